@@ -1,0 +1,655 @@
+//! The driver: one loop for every method.
+//!
+//! [`Driver`] owns the horizon `[t₀, t_end]`, the step policy (fixed `h`, or adaptive with
+//! [`Tolerances`]), events, observers and cancellation; steppers only step.
+//!
+//! - **Fixed steps** ([`Driver::run_fixed`]): times `t_k = t₀ + k h` (no accumulated
+//!   rounding); the last step is shortened so that the run ends exactly at `t_end` (when
+//!   `(t_end − t₀)/h` is an integer up to 1e-9 relative, all steps are `h`).
+//! - **Adaptive steps** ([`Driver::run_adaptive`]): PI control, the last step lands exactly
+//!   on `t_end`, failures below the resolvable step are [`Error::StepSizeUnderflow`].
+//! - **Events**: a function `g(t, y)` whose sign change (in the given [`Direction`]) is
+//!   located on the stepper's dense output by the Illinois variant of regula falsi, to a
+//!   bracket of a few ulps in `t`; the event then [`Action::Continue`]s (recorded in the
+//!   report) or [`Action::Terminate`]s the run with the state at the event.
+//! - **Observers** ([`Observer`]) are called at `t₀`, every `n`-th step, and at the end;
+//!   the default does nothing and nothing is stored unless an observer stores it.
+//! - **Cancellation**: a callback polled before every step; a cancelled run returns
+//!   [`Status::Cancelled`] with the last completed state.
+//!
+//! Every step's result is checked: a non-finite state is [`Error::NonFinite`] with the time
+//! and the state before the step.
+
+use crate::error::{Error, check_step};
+use crate::state::{State, VectorState};
+use crate::stepper::{AdaptiveStepper, DenseOutput, Stepper, Tolerances};
+
+/// What an observer asks the driver to do next.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Flow {
+    /// Go on.
+    Continue,
+    /// Stop the run here (status [`Status::Stopped`]).
+    Stop,
+}
+
+/// Watches the run: called at the start, every `n` steps, and at the end.
+pub trait Observer<S> {
+    /// Called with the current time and state; the default does nothing.
+    fn observe(&mut self, t: f64, state: &S) -> Flow {
+        let _ = (t, state);
+        Flow::Continue
+    }
+}
+
+/// The observer that does nothing.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct NoObserver;
+
+impl<S> Observer<S> for NoObserver {}
+
+/// An observer from a closure `|t, state| -> Flow`.
+pub struct FnObserver<F>(pub F);
+
+impl<S, F: FnMut(f64, &S) -> Flow> Observer<S> for FnObserver<F> {
+    fn observe(&mut self, t: f64, state: &S) -> Flow {
+        (self.0)(t, state)
+    }
+}
+
+/// Which sign changes of an event function count.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Direction {
+    /// From negative to non-negative.
+    Rising,
+    /// From positive to non-positive.
+    Falling,
+    /// Either.
+    Either,
+}
+
+/// What happens at an event.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Action {
+    /// Record it and go on.
+    Continue,
+    /// Record it and end the run at the event.
+    Terminate,
+}
+
+/// An event function `g(t, y)`.
+pub type EventFunction<'a, S> = Box<dyn Fn(f64, &S) -> f64 + 'a>;
+
+/// An event: a root of `g(t, y)`.
+pub struct Event<'a, S> {
+    /// The event function.
+    pub function: EventFunction<'a, S>,
+    /// Which crossings count.
+    pub direction: Direction,
+    /// What to do at a crossing.
+    pub action: Action,
+}
+
+impl<'a, S> Event<'a, S> {
+    /// An event from a closure.
+    pub fn new(function: impl Fn(f64, &S) -> f64 + 'a, direction: Direction, action: Action) -> Self {
+        Self {
+            function: Box::new(function),
+            direction,
+            action,
+        }
+    }
+}
+
+/// An event that happened.
+#[derive(Debug, Clone, PartialEq)]
+pub struct EventRecord<S> {
+    /// Index of the event in the list given to the driver.
+    pub index: usize,
+    /// Time of the root.
+    pub t: f64,
+    /// State at the root (from the dense output).
+    pub state: S,
+}
+
+/// How a run ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Status {
+    /// Reached `t_end`.
+    Completed,
+    /// A terminal event fired (index of the event).
+    Terminated(usize),
+    /// The cancellation callback returned `true`.
+    Cancelled,
+    /// An observer returned [`Flow::Stop`].
+    Stopped,
+}
+
+/// Summary of a run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Report<S> {
+    /// Time reached (the state passed in holds the state there).
+    pub t: f64,
+    /// Accepted steps.
+    pub steps: u64,
+    /// Rejected step attempts (adaptive runs).
+    pub rejected: u64,
+    /// How the run ended.
+    pub status: Status,
+    /// Events that happened, in time order.
+    pub events: Vec<EventRecord<S>>,
+}
+
+/// The integration loop's settings: horizon, observer cadence, cancellation, step limits.
+pub struct Driver<'a> {
+    t0: f64,
+    t_end: f64,
+    every: u64,
+    max_steps: u64,
+    h_max: f64,
+    cancel: Option<&'a dyn Fn() -> bool>,
+}
+
+impl<'a> Driver<'a> {
+    /// A driver for `[t0, t_end]` (forward in time, `t_end > t0`).
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] for non-finite times or `t_end ≤ t0`.
+    pub fn new(t0: f64, t_end: f64) -> Result<Self, Error> {
+        if !t0.is_finite() {
+            return Err(Error::InvalidParameter {
+                name: "t0",
+                value: t0,
+                reason: "must be finite",
+            });
+        }
+        if !(t_end.is_finite() && t_end > t0) {
+            return Err(Error::InvalidParameter {
+                name: "t_end",
+                value: t_end,
+                reason: "must be finite and greater than t0",
+            });
+        }
+        Ok(Self {
+            t0,
+            t_end,
+            every: 1,
+            max_steps: u64::MAX,
+            h_max: t_end - t0,
+            cancel: None,
+        })
+    }
+
+    /// Call the observer every `n ≥ 1` steps (default 1).
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] for `n = 0`.
+    pub fn every(mut self, n: u64) -> Result<Self, Error> {
+        if n == 0 {
+            return Err(Error::InvalidParameter {
+                name: "every",
+                value: 0.0,
+                reason: "must be at least 1",
+            });
+        }
+        self.every = n;
+        Ok(self)
+    }
+
+    /// Give up (with [`Error::TooManySteps`]) after this many steps.
+    #[must_use]
+    pub fn max_steps(mut self, n: u64) -> Self {
+        self.max_steps = n;
+        self
+    }
+
+    /// Largest step of adaptive runs.
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] unless finite and positive.
+    pub fn h_max(mut self, h_max: f64) -> Result<Self, Error> {
+        check_step(h_max).map_err(|_| Error::InvalidParameter {
+            name: "h_max",
+            value: h_max,
+            reason: "must be finite and positive",
+        })?;
+        self.h_max = h_max;
+        Ok(self)
+    }
+
+    /// Poll `cancel` before every step; `true` ends the run with [`Status::Cancelled`].
+    #[must_use]
+    pub fn cancel(mut self, cancel: &'a dyn Fn() -> bool) -> Self {
+        self.cancel = Some(cancel);
+        self
+    }
+
+    fn cancelled(&self) -> bool {
+        self.cancel.is_some_and(|c| c())
+    }
+
+    /// Number of fixed steps and whether the last one is shorter.
+    fn fixed_steps(&self, h: f64) -> Result<u64, Error> {
+        check_step(h)?;
+        let span = self.t_end - self.t0;
+        if h > span * (1.0 + 1e-12) {
+            return Err(Error::StepLargerThanHorizon {
+                h,
+                t0: self.t0,
+                t_end: self.t_end,
+            });
+        }
+        let r = span / h;
+        let rounded = r.round();
+        let n = if (r - rounded).abs() <= 1e-9 * r {
+            rounded
+        } else {
+            r.ceil()
+        };
+        if n > 1e15 {
+            return Err(Error::InvalidParameter {
+                name: "h",
+                value: h,
+                reason: "too small for the horizon (more than 1e15 steps)",
+            });
+        }
+        Ok(n as u64)
+    }
+
+    /// Integrates with fixed steps `h` (any [`Stepper`], no events).
+    ///
+    /// # Errors
+    /// Parameter errors (`h` not positive or larger than the horizon), the stepper's
+    /// numerical errors, [`Error::NonFinite`], [`Error::TooManySteps`].
+    pub fn run_fixed<P: ?Sized, St: Stepper<P>, O: Observer<St::State>>(
+        &self,
+        stepper: &mut St,
+        problem: &P,
+        state: &mut St::State,
+        h: f64,
+        observer: &mut O,
+    ) -> Result<Report<St::State>, Error> {
+        self.fixed_loop(stepper, problem, state, h, observer, None::<&mut NoEvents<'_, St::State>>)
+    }
+
+    /// Integrates with fixed steps `h` and locates `events` on the stepper's dense output.
+    ///
+    /// # Errors
+    /// As [`Driver::run_fixed`].
+    pub fn run_fixed_with_events<P: ?Sized, St, O>(
+        &self,
+        stepper: &mut St,
+        problem: &P,
+        state: &mut St::State,
+        h: f64,
+        events: &mut [Event<'_, St::State>],
+        observer: &mut O,
+    ) -> Result<Report<St::State>, Error>
+    where
+        St: DenseOutput<P>,
+        St::State: VectorState,
+        O: Observer<St::State>,
+    {
+        let mut tracker = EventTracker::new(events);
+        self.fixed_loop(stepper, problem, state, h, observer, Some(&mut tracker))
+    }
+
+    fn fixed_loop<P: ?Sized, St: Stepper<P>, O: Observer<St::State>, E: EventHook<P, St>>(
+        &self,
+        stepper: &mut St,
+        problem: &P,
+        state: &mut St::State,
+        h: f64,
+        observer: &mut O,
+        mut events: Option<&mut E>,
+    ) -> Result<Report<St::State>, Error> {
+        let n = self.fixed_steps(h)?;
+        let mut report = Report {
+            t: self.t0,
+            steps: 0,
+            rejected: 0,
+            status: Status::Completed,
+            events: Vec::new(),
+        };
+        if let Some(ev) = events.as_deref_mut() {
+            ev.start(self.t0, state);
+        }
+        if observer.observe(self.t0, state) == Flow::Stop {
+            report.status = Status::Stopped;
+            return Ok(report);
+        }
+        let mut t = self.t0;
+        for k in 0..n {
+            if self.cancelled() {
+                report.status = Status::Cancelled;
+                return Ok(report);
+            }
+            if k >= self.max_steps {
+                return Err(Error::TooManySteps {
+                    t,
+                    max_steps: self.max_steps,
+                    state: state.to_vec(),
+                });
+            }
+            let t_next = if k + 1 == n {
+                self.t_end
+            } else {
+                self.t0 + (k + 1) as f64 * h
+            };
+            let hk = t_next - t;
+            stepper.step(problem, t, state, hk)?;
+            if !state.is_finite() {
+                return Err(Error::NonFinite {
+                    t,
+                    h: hk,
+                    state: state.to_vec(),
+                });
+            }
+            report.steps += 1;
+            if let Some(ev) = events.as_deref_mut()
+                && let Some(t_stop) = ev.after_step(stepper, problem, t_next, state, &mut report)
+            {
+                report.t = t_stop;
+                observer.observe(t_stop, state);
+                stepper.reset();
+                return Ok(report);
+            }
+            t = t_next;
+            report.t = t;
+            let last = k + 1 == n;
+            if (report.steps % self.every == 0 || last) && observer.observe(t, state) == Flow::Stop {
+                report.status = Status::Stopped;
+                return Ok(report);
+            }
+        }
+        Ok(report)
+    }
+
+    /// Integrates adaptively with the given tolerances, locating `events` on the dense
+    /// output.
+    ///
+    /// # Errors
+    /// Parameter errors, the stepper's numerical errors, [`Error::NonFinite`],
+    /// [`Error::StepSizeUnderflow`], [`Error::TooManySteps`].
+    pub fn run_adaptive<P: ?Sized, St, O>(
+        &self,
+        stepper: &mut St,
+        problem: &P,
+        state: &mut St::State,
+        tolerances: &Tolerances,
+        events: &mut [Event<'_, St::State>],
+        observer: &mut O,
+    ) -> Result<Report<St::State>, Error>
+    where
+        St: AdaptiveStepper<P> + DenseOutput<P>,
+        St::State: VectorState,
+        O: Observer<St::State>,
+    {
+        let tol = Tolerances::new(tolerances.rtol, tolerances.atol)?;
+        let mut tracker = EventTracker::new(events);
+        let mut report = Report {
+            t: self.t0,
+            steps: 0,
+            rejected: 0,
+            status: Status::Completed,
+            events: Vec::new(),
+        };
+        EventHook::<P, St>::start(&mut tracker, self.t0, state);
+        if observer.observe(self.t0, state) == Flow::Stop {
+            report.status = Status::Stopped;
+            return Ok(report);
+        }
+        let q = stepper.error_order();
+        let controller = stepper.controller();
+        let mut t = self.t0;
+        let mut h = stepper.initial_step(problem, t, state, self.h_max, &tol);
+        let mut err_prev = 1e-4_f64;
+        let mut after_reject = false;
+        let mut attempts: u64 = 0;
+        while t < self.t_end {
+            if self.cancelled() {
+                report.status = Status::Cancelled;
+                return Ok(report);
+            }
+            if report.steps >= self.max_steps {
+                return Err(Error::TooManySteps {
+                    t,
+                    max_steps: self.max_steps,
+                    state: state.to_vec(),
+                });
+            }
+            attempts += 1;
+            if attempts > self.max_steps.saturating_mul(4).max(1_000_000_000) {
+                return Err(Error::TooManySteps {
+                    t,
+                    max_steps: self.max_steps,
+                    state: state.to_vec(),
+                });
+            }
+            if h < 16.0 * f64::EPSILON * t.abs().max(1.0) {
+                return Err(Error::StepSizeUnderflow {
+                    t,
+                    h,
+                    state: state.to_vec(),
+                });
+            }
+            h = h.min(self.h_max);
+            let last = t + 1.01 * h >= self.t_end;
+            if last {
+                h = self.t_end - t;
+            }
+            let err = stepper.attempt(problem, t, state, h, &tol)?;
+            if err.is_finite() && err <= 1.0 {
+                let t_next = if last { self.t_end } else { t + h };
+                stepper.accept(problem, t, state, h);
+                if !state.is_finite() {
+                    return Err(Error::NonFinite {
+                        t,
+                        h,
+                        state: state.to_vec(),
+                    });
+                }
+                report.steps += 1;
+                if let Some(t_stop) = tracker.after_step(stepper, problem, t_next, state, &mut report) {
+                    report.t = t_stop;
+                    observer.observe(t_stop, state);
+                    stepper.reset();
+                    return Ok(report);
+                }
+                t = t_next;
+                report.t = t;
+                if (report.steps % self.every == 0 || t >= self.t_end)
+                    && observer.observe(t, state) == Flow::Stop
+                {
+                    report.status = Status::Stopped;
+                    return Ok(report);
+                }
+                let fac = controller.accepted_factor(err, err_prev, q, after_reject);
+                err_prev = err.max(1e-4);
+                after_reject = false;
+                h *= fac;
+            } else {
+                report.rejected += 1;
+                after_reject = true;
+                h *= controller.rejected_factor(err, q);
+            }
+        }
+        Ok(report)
+    }
+}
+
+
+/// Event handling inside the loops (a trait so the fixed loop can run without events).
+trait EventHook<P: ?Sized, St: Stepper<P>> {
+    fn start(&mut self, t: f64, state: &St::State);
+    /// Returns the time at which the run must stop (terminal event), with `state` set there.
+    fn after_step(
+        &mut self,
+        stepper: &mut St,
+        problem: &P,
+        t1: f64,
+        state: &mut St::State,
+        report: &mut Report<St::State>,
+    ) -> Option<f64>;
+}
+
+/// No events.
+struct NoEvents<'e, S>(std::marker::PhantomData<&'e S>);
+
+impl<P: ?Sized, St: Stepper<P>> EventHook<P, St> for NoEvents<'_, St::State> {
+    fn start(&mut self, _t: f64, _state: &St::State) {}
+    fn after_step(
+        &mut self,
+        _stepper: &mut St,
+        _problem: &P,
+        _t1: f64,
+        _state: &mut St::State,
+        _report: &mut Report<St::State>,
+    ) -> Option<f64> {
+        None
+    }
+}
+
+struct EventTracker<'e, 'f, S> {
+    events: &'e mut [Event<'f, S>],
+    g_prev: Vec<f64>,
+    t_prev: f64,
+    scratch: Option<S>,
+    found: Vec<(f64, usize)>,
+}
+
+impl<'e, 'f, S: VectorState> EventTracker<'e, 'f, S> {
+    fn new(events: &'e mut [Event<'f, S>]) -> Self {
+        let n = events.len();
+        Self {
+            events,
+            g_prev: vec![0.0; n],
+            t_prev: 0.0,
+            scratch: None,
+            found: Vec::with_capacity(n),
+        }
+    }
+}
+
+fn crosses(direction: Direction, g0: f64, g1: f64) -> bool {
+    match direction {
+        Direction::Rising => g0 < 0.0 && g1 >= 0.0,
+        Direction::Falling => g0 > 0.0 && g1 <= 0.0,
+        Direction::Either => (g0 < 0.0 && g1 >= 0.0) || (g0 > 0.0 && g1 <= 0.0),
+    }
+}
+
+impl<P: ?Sized, St> EventHook<P, St> for EventTracker<'_, '_, St::State>
+where
+    St: DenseOutput<P>,
+    St::State: VectorState,
+{
+    fn start(&mut self, t: f64, state: &St::State) {
+        self.t_prev = t;
+        for (g, ev) in self.g_prev.iter_mut().zip(self.events.iter()) {
+            *g = (ev.function)(t, state);
+        }
+        if !self.events.is_empty() {
+            self.scratch = Some(state.zeros_like());
+        }
+    }
+
+    fn after_step(
+        &mut self,
+        stepper: &mut St,
+        problem: &P,
+        t1: f64,
+        state: &mut St::State,
+        report: &mut Report<St::State>,
+    ) -> Option<f64> {
+        if self.events.is_empty() {
+            return None;
+        }
+        let t0 = self.t_prev;
+        self.found.clear();
+        let scratch = self.scratch.as_mut()?;
+        for (i, ev) in self.events.iter().enumerate() {
+            let g0 = self.g_prev[i];
+            let g1 = (ev.function)(t1, state);
+            if crosses(ev.direction, g0, g1) {
+                let root = locate(stepper, problem, &*ev.function, t0, g0, t1, g1, scratch);
+                self.found.push((root, i));
+            }
+            self.g_prev[i] = g1;
+        }
+        self.t_prev = t1;
+        if self.found.is_empty() {
+            return None;
+        }
+        self.found.sort_by(|a, b| a.0.total_cmp(&b.0));
+        for &(root, i) in &self.found {
+            stepper.interpolate(problem, root, scratch);
+            report.events.push(EventRecord {
+                index: i,
+                t: root,
+                state: scratch.clone(),
+            });
+            if self.events[i].action == Action::Terminate {
+                state.as_mut_slice().copy_from_slice(scratch.as_slice());
+                report.status = Status::Terminated(i);
+                return Some(root);
+            }
+        }
+        None
+    }
+}
+
+/// Root of `g(t, u(t))` on `[t0, t1]` (sign change given) by the Illinois method on the
+/// dense output `u`.
+fn locate<P: ?Sized, St>(
+    stepper: &mut St,
+    problem: &P,
+    g: &dyn Fn(f64, &St::State) -> f64,
+    t0: f64,
+    g0: f64,
+    t1: f64,
+    g1: f64,
+    scratch: &mut St::State,
+) -> f64
+where
+    St: DenseOutput<P>,
+{
+    if g1 == 0.0 {
+        return t1;
+    }
+    let (mut a, mut ga, mut b, mut gb) = (t0, g0, t1, g1);
+    let mut side = 0i8;
+    for _ in 0..200 {
+        if (b - a).abs() <= 4.0 * f64::EPSILON * a.abs().max(b.abs()).max(1e-300) {
+            break;
+        }
+        let mut c = (a * gb - b * ga) / (gb - ga);
+        if !(c > a.min(b) && c < a.max(b)) {
+            c = 0.5 * (a + b);
+        }
+        stepper.interpolate(problem, c, scratch);
+        let gc = g(c, scratch);
+        if gc == 0.0 {
+            return c;
+        }
+        if (gc < 0.0) == (gb < 0.0) {
+            // c replaces b; a is retained
+            b = c;
+            gb = gc;
+            if side == -1 {
+                ga *= 0.5;
+            }
+            side = -1;
+        } else {
+            a = c;
+            ga = gc;
+            if side == 1 {
+                gb *= 0.5;
+            }
+            side = 1;
+        }
+    }
+    // `a` keeps the sign of g0 and `b` that of g1: `b` is the first time past the crossing.
+    let _ = ga;
+    b
+}

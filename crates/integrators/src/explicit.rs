@@ -1,0 +1,398 @@
+//! Explicit Runge–Kutta: one generic stepper walks any [`ExplicitTableau`].
+//!
+//! A step of size `h` from `(t, y)` computes the stages
+//! `kᵢ = f(t + cᵢ h, y + h Σ_{j<i} a_ij k_j)` and `y₁ = y + h Σ bᵢ kᵢ` (with compensated
+//! summation of the update). With an embedded pair the scaled error
+//! `err = ‖h Σ eᵢ kᵢ‖`, weighted componentwise by `atol + rtol max(|y|, |y₁|)` in the RMS
+//! norm, drives the step-size controller ([`crate::control`]).
+//!
+//! Dense output on `[t, t + h]`, `θ = (τ − t)/h`, `θ' = 1 − θ`:
+//!
+//! `u(θ) = r₁ + θ(r₂ + θ'(r₃ + θ(r₄ + θ'(r₅ + θ(r₆ + θ'(r₇ + θ r₈))))))`
+//!
+//! with `r₁ = y`, `r₂ = y₁ − y`, `r₃ = h k₁ − r₂`, `r₄ = r₂ − h f(t+h, y₁) − r₃` (the cubic
+//! Hermite interpolant) and `r_{4+m} = h Σᵢ d_{m,i} kᵢ` from the table's dense rows
+//! (DP5: Shampine's order-4 output, one row; DOP853: Hairer's order-7 output, four rows and
+//! three extra stages, evaluated only when an interpolant is asked for).
+//!
+//! # References
+//! See [`crate::tables::explicit`].
+
+use crate::control::PiController;
+use crate::error::Error;
+use crate::problem::Ode;
+use crate::state::{VectorState, compensated_add, copy_into};
+use crate::stepper::{AdaptiveStepper, DenseOutput, Stepper, Tolerances};
+use crate::tables::explicit::{DOP853, DP5, RK4};
+use crate::tables::{ErrorEstimator, ExplicitTableau};
+
+/// An explicit Runge–Kutta method: a table and its step-size controller.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ExplicitRungeKutta<const S: usize> {
+    /// The Butcher tableau (with error estimator and dense output).
+    pub table: &'static ExplicitTableau<S>,
+    /// Step-size controller (unused for fixed steps).
+    pub controller: PiController,
+}
+
+/// The classical RK4.
+pub type Rk4 = ExplicitRungeKutta<5>;
+/// Dormand–Prince 5(4).
+pub type Dp5 = ExplicitRungeKutta<7>;
+/// DOP853.
+pub type Dop853 = ExplicitRungeKutta<16>;
+
+impl ExplicitRungeKutta<5> {
+    /// The classical RK4 (fixed step; cubic Hermite dense output).
+    #[must_use]
+    pub const fn rk4() -> Self {
+        Self {
+            table: &RK4,
+            controller: PiController::DP5,
+        }
+    }
+}
+
+impl ExplicitRungeKutta<7> {
+    /// Dormand–Prince 5(4) with Hairer's PI controller.
+    #[must_use]
+    pub const fn dp5() -> Self {
+        Self {
+            table: &DP5,
+            controller: PiController::DP5,
+        }
+    }
+}
+
+impl ExplicitRungeKutta<16> {
+    /// DOP853 with Hairer's controller.
+    #[must_use]
+    pub const fn dop853() -> Self {
+        Self {
+            table: &DOP853,
+            controller: PiController::DOP853,
+        }
+    }
+}
+
+impl<const S: usize> ExplicitRungeKutta<S> {
+    /// Builds the per-run stepper for states shaped like `y0` (allocates the workspace once).
+    #[must_use]
+    pub fn stepper<Y: VectorState>(&self, y0: &Y) -> ExplicitRkStepper<S, Y> {
+        ExplicitRkStepper {
+            table: self.table,
+            controller: self.controller,
+            k: std::array::from_fn(|_| y0.zeros_like()),
+            y0: y0.zeros_like(),
+            y1: y0.zeros_like(),
+            ytmp: y0.zeros_like(),
+            delta: y0.zeros_like(),
+            carry: y0.zeros_like(),
+            t0: 0.0,
+            h: 0.0,
+            t1: f64::NAN,
+            committed: false,
+            dense_ready: false,
+            continuing: false,
+        }
+    }
+}
+
+/// Workspace of one run of an explicit Runge–Kutta method.
+#[derive(Debug, Clone)]
+pub struct ExplicitRkStepper<const S: usize, Y> {
+    table: &'static ExplicitTableau<S>,
+    controller: PiController,
+    k: [Y; S],
+    y0: Y,
+    y1: Y,
+    ytmp: Y,
+    delta: Y,
+    carry: Y,
+    t0: f64,
+    h: f64,
+    t1: f64,
+    committed: bool,
+    dense_ready: bool,
+    continuing: bool,
+}
+
+impl<const S: usize, Y: VectorState> ExplicitRkStepper<S, Y> {
+    /// The table this stepper walks.
+    pub fn table(&self) -> &'static ExplicitTableau<S> {
+        self.table
+    }
+
+    /// `ytmp = base + h Σ_{j<i} a_ij k_j` (`base` = `y0` of the last step when `None`).
+    fn stage_argument(&mut self, base: Option<&Y>, i: usize, h: f64) {
+        let row = &self.table.a[i];
+        copy_into(&mut self.ytmp, base.unwrap_or(&self.y0));
+        let out = self.ytmp.as_mut_slice();
+        for (j, &a) in row.iter().enumerate().take(i) {
+            if a != 0.0 {
+                let ha = h * a;
+                for (o, kj) in out.iter_mut().zip(self.k[j].as_slice()) {
+                    *o += ha * kj;
+                }
+            }
+        }
+    }
+
+    /// All stages of one attempt and the increment `delta = h Σ bᵢ kᵢ`.
+    fn compute_stages<P: Ode<Y>>(&mut self, problem: &P, t: f64, y: &Y, h: f64) {
+        let tab = self.table;
+        // The cached f(t, y) of the previous step is the first stage when the caller
+        // continues from exactly where the last step ended.
+        self.continuing = self.committed
+            && crate::state::same_time(t, self.t1)
+            && y.as_slice() == self.y1.as_slice()
+            && tab.fsal != 0;
+        if self.continuing {
+            let (first, rest) = self.k.split_at_mut(1);
+            copy_into(&mut first[0], &rest[tab.fsal - 1]);
+        } else {
+            problem.rhs(t, y, &mut self.k[0]);
+        }
+        self.committed = false;
+        self.dense_ready = false;
+        for i in 1..tab.stages {
+            self.stage_argument(Some(y), i, h);
+            problem.rhs(t + tab.c[i] * h, &self.ytmp, &mut self.k[i]);
+        }
+        let d = self.delta.as_mut_slice();
+        d.fill(0.0);
+        for (j, &b) in tab.b.iter().enumerate().take(tab.stages) {
+            if b != 0.0 {
+                let hb = h * b;
+                for (o, kj) in d.iter_mut().zip(self.k[j].as_slice()) {
+                    *o += hb * kj;
+                }
+            }
+        }
+    }
+
+    fn error_norm(&self, y: &Y, h: f64, tol: &Tolerances) -> f64 {
+        let n = y.dim().max(1) as f64;
+        let ys = y.as_slice();
+        let ds = self.delta.as_slice();
+        let weight = |i: usize| tol.atol + tol.rtol * ys[i].abs().max((ys[i] + ds[i]).abs());
+        match &self.table.error {
+            ErrorEstimator::None => 0.0,
+            ErrorEstimator::Embedded { weights, .. } => {
+                let mut sum = 0.0;
+                for i in 0..ys.len() {
+                    let mut e = 0.0;
+                    for (j, &w) in weights.iter().enumerate() {
+                        if w != 0.0 {
+                            e += w * self.k[j].as_slice()[i];
+                        }
+                    }
+                    let r = h * e / weight(i);
+                    sum += r * r;
+                }
+                (sum / n).sqrt()
+            }
+            ErrorEstimator::Dop853 { e5, e3, .. } => {
+                let (mut s5, mut s3) = (0.0, 0.0);
+                for i in 0..ys.len() {
+                    let (mut a5, mut a3) = (0.0, 0.0);
+                    for j in 0..S {
+                        let kj = self.k[j].as_slice()[i];
+                        a5 += e5[j] * kj;
+                        a3 += e3[j] * kj;
+                    }
+                    let sk = weight(i);
+                    s5 += (a5 / sk) * (a5 / sk);
+                    s3 += (a3 / sk) * (a3 / sk);
+                }
+                let mut deno = s5 + 0.01 * s3;
+                if deno <= 0.0 {
+                    deno = 1.0;
+                }
+                h.abs() * s5 / (n * deno).sqrt()
+            }
+        }
+    }
+
+    fn commit<P: Ode<Y>>(&mut self, problem: &P, t: f64, y: &mut Y, h: f64) {
+        let tab = self.table;
+        copy_into(&mut self.y0, y);
+        if !self.continuing {
+            self.carry.as_mut_slice().fill(0.0);
+        }
+        for ((yi, di), ci) in y
+            .as_mut_slice()
+            .iter_mut()
+            .zip(self.delta.as_slice())
+            .zip(self.carry.as_mut_slice())
+        {
+            compensated_add(yi, *di, ci);
+        }
+        copy_into(&mut self.y1, y);
+        self.t0 = t;
+        self.h = h;
+        self.t1 = t + h;
+        if tab.fsal >= tab.stages {
+            problem.rhs(t + h, y, &mut self.k[tab.fsal]);
+        }
+        self.committed = true;
+        self.dense_ready = false;
+    }
+
+    fn ensure_dense<P: Ode<Y>>(&mut self, problem: &P) {
+        if self.dense_ready {
+            return;
+        }
+        let tab = self.table;
+        let (t0, h) = (self.t0, self.h);
+        for i in tab.stages..S {
+            if i == tab.fsal {
+                continue;
+            }
+            self.stage_argument(None, i, h);
+            problem.rhs(t0 + tab.c[i] * h, &self.ytmp, &mut self.k[i]);
+        }
+        self.dense_ready = true;
+    }
+}
+
+impl<const S: usize, Y: VectorState, P: Ode<Y>> Stepper<P> for ExplicitRkStepper<S, Y> {
+    type State = Y;
+
+    fn step(&mut self, problem: &P, t: f64, state: &mut Y, h: f64) -> Result<(), Error> {
+        self.compute_stages(problem, t, state, h);
+        self.commit(problem, t, state, h);
+        Ok(())
+    }
+
+    fn reset(&mut self) {
+        self.committed = false;
+        self.dense_ready = false;
+        self.t1 = f64::NAN;
+    }
+}
+
+impl<const S: usize, Y: VectorState, P: Ode<Y>> AdaptiveStepper<P> for ExplicitRkStepper<S, Y> {
+    fn error_order(&self) -> u32 {
+        match self.table.error {
+            ErrorEstimator::None => self.table.order,
+            ErrorEstimator::Embedded { order, .. } | ErrorEstimator::Dop853 { order, .. } => order,
+        }
+    }
+
+    fn controller(&self) -> PiController {
+        self.controller
+    }
+
+    fn attempt(
+        &mut self,
+        problem: &P,
+        t: f64,
+        state: &Y,
+        h: f64,
+        tolerances: &Tolerances,
+    ) -> Result<f64, Error> {
+        self.compute_stages(problem, t, state, h);
+        Ok(self.error_norm(state, h, tolerances))
+    }
+
+    fn accept(&mut self, problem: &P, t: f64, state: &mut Y, h: f64) {
+        self.commit(problem, t, state, h);
+    }
+
+    fn initial_step(
+        &mut self,
+        problem: &P,
+        t: f64,
+        state: &Y,
+        h_max: f64,
+        tolerances: &Tolerances,
+    ) -> f64 {
+        // Hairer–Nørsett–Wanner I, §II.4: h₀ from ‖y‖ and ‖f‖, then one Euler step to
+        // estimate the second derivative.
+        let n = state.dim().max(1) as f64;
+        problem.rhs(t, state, &mut self.k[0]);
+        let ys = state.as_slice();
+        let sk = |i: usize| tolerances.atol + tolerances.rtol * ys[i].abs();
+        let rms = |v: &[f64]| {
+            (v.iter()
+                .enumerate()
+                .map(|(i, x)| (x / sk(i)) * (x / sk(i)))
+                .sum::<f64>()
+                / n)
+                .sqrt()
+        };
+        let d0 = rms(ys);
+        let d1 = rms(self.k[0].as_slice());
+        let mut h0 = if d0 < 1e-10 || d1 < 1e-10 {
+            1e-6
+        } else {
+            0.01 * d0 / d1
+        };
+        h0 = h0.min(h_max);
+        copy_into(&mut self.ytmp, state);
+        for (o, f) in self.ytmp.as_mut_slice().iter_mut().zip(self.k[0].as_slice()) {
+            *o += h0 * f;
+        }
+        problem.rhs(t + h0, &self.ytmp, &mut self.k[1]);
+        let mut diff = 0.0;
+        for i in 0..ys.len() {
+            let d = (self.k[1].as_slice()[i] - self.k[0].as_slice()[i]) / sk(i);
+            diff += d * d;
+        }
+        let d2 = (diff / n).sqrt() / h0;
+        let order = f64::from(self.table.order);
+        let h1 = if d1.max(d2) <= 1e-15 {
+            (h0 * 1e-3).max(1e-6)
+        } else {
+            (0.01 / d1.max(d2)).powf(1.0 / order)
+        };
+        self.committed = false;
+        (100.0 * h0).min(h1).min(h_max)
+    }
+}
+
+impl<const S: usize, Y: VectorState, P: Ode<Y>> DenseOutput<P> for ExplicitRkStepper<S, Y> {
+    fn last_step(&self) -> Option<(f64, f64)> {
+        self.committed.then_some((self.t0, self.h))
+    }
+
+    fn interpolate(&mut self, problem: &P, t: f64, out: &mut Y) {
+        self.ensure_dense(problem);
+        let tab = self.table;
+        let h = self.h;
+        let theta = (t - self.t0) / h;
+        let theta1 = 1.0 - theta;
+        let n_r = 4 + tab.dense.len();
+        let o = out.as_mut_slice();
+        for i in 0..o.len() {
+            let y0 = self.y0.as_slice()[i];
+            let mut r = [0.0_f64; 12];
+            r[0] = y0;
+            r[1] = self.y1.as_slice()[i] - y0;
+            r[2] = h * self.k[0].as_slice()[i] - r[1];
+            r[3] = r[1] - h * self.k[tab.fsal].as_slice()[i] - r[2];
+            for (m, row) in tab.dense.iter().enumerate() {
+                let mut s = 0.0;
+                for (j, &d) in row.iter().enumerate() {
+                    if d != 0.0 {
+                        s += d * self.k[j].as_slice()[i];
+                    }
+                }
+                r[4 + m] = h * s;
+            }
+            // Fold from the innermost term: r_m (1-based) is multiplied by θ' when m is
+            // even and by θ when m is odd.
+            let mut acc = r[n_r - 1];
+            for m in (1..n_r - 1).rev() {
+                let mult = if (m + 1) % 2 == 0 { theta1 } else { theta };
+                acc = r[m] + mult * acc;
+            }
+            o[i] = r[0] + theta * acc;
+        }
+    }
+
+    fn dense_order(&self) -> u32 {
+        self.table.dense_order
+    }
+}
