@@ -1,3 +1,10 @@
+//! The `tumble` command line: parses flags, builds validated objects from them, calls the
+//! library crates and maps errors to a message on stderr and a non-zero exit code.
+
+mod cmd;
+
+use std::process::ExitCode;
+
 use clap::{Parser, Subcommand};
 
 /// tumble: high-accuracy rigid-body dynamics.
@@ -9,9 +16,21 @@ struct Cli {
 }
 
 #[derive(Subcommand, Debug)]
-enum Command {}
+enum Command {
+    /// Angular velocity from Euler angles and rates, in the space and body frames
+    Kinematics(cmd::kinematics::Args),
+}
 
-fn main() -> std::process::ExitCode {
+fn main() -> ExitCode {
     let cli = Cli::parse();
-    match cli.command {}
+    let result = match cli.command {
+        Command::Kinematics(args) => cmd::kinematics::run(&args),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            ExitCode::FAILURE
+        }
+    }
 }

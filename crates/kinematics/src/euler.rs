@@ -40,9 +40,8 @@
 //! `a₂ = 2 atan2(hypot(c, d), hypot(a, b))`, `θ₊ = atan2(b, a)`, `θ₋ = atan2(d, c)`,
 //! `a₁ = θ₊ + θ₋`, `a₃ = θ₊ − θ₋`. A Tait–Bryan sequence `(i, j, k)` is reduced to the proper
 //! sequence `(i, j, i)` by `R_k(γ) = P R_i(−εγ) Pᵀ` with `P = R_j(π/2)`. No step divides, so no
-//! NaN can arise; at exact gimbal lock (`hypot(c, d)` or `hypot(a, b)` at round-off level) the
-//! third intrinsic angle is set to 0 and the first carries the whole rotation about the locked
-//! axis.
+//! NaN can arise; at exact gimbal lock (`hypot(c, d)` or `hypot(a, b)` exactly zero) the third
+//! intrinsic angle is set to 0 and the first carries the whole rotation about the locked axis.
 //!
 //! # References
 //! * E. Bernardes, S. Viollet, "Quaternion to Euler angles conversion: A direct, general and
@@ -254,7 +253,8 @@ impl FromStr for EulerSequence {
             _ => None,
         };
         if letters.len() == 3
-            && let (Some(a), Some(b), Some(c)) = (axis(letters[0]), axis(letters[1]), axis(letters[2]))
+            && let (Some(a), Some(b), Some(c)) =
+                (axis(letters[0]), axis(letters[1]), axis(letters[2]))
             && let Some(seq) = EulerSequence::from_axes([a, b, c])
         {
             return Ok(seq);
@@ -379,7 +379,11 @@ impl EulerConvention {
         EulerSequence::ALL
             .into_iter()
             .map(EulerConvention::intrinsic)
-            .chain(EulerSequence::ALL.into_iter().map(EulerConvention::extrinsic))
+            .chain(
+                EulerSequence::ALL
+                    .into_iter()
+                    .map(EulerConvention::extrinsic),
+            )
     }
 
     /// The axes of the equivalent intrinsic product `R = R_{e₁}(·) R_{e₂}(·) R_{e₃}(·)`.
@@ -585,7 +589,11 @@ impl EulerConvention {
         angles: &Vector3<T>,
         omega_body: &Vector3<T>,
     ) -> Result<Vector3<T>, KinematicsError> {
-        self.try_rates_from_omega_body_with_tolerance(angles, omega_body, RATE_SINGULARITY_TOLERANCE)
+        self.try_rates_from_omega_body_with_tolerance(
+            angles,
+            omega_body,
+            RATE_SINGULARITY_TOLERANCE,
+        )
     }
 
     /// As [`Self::try_rates_from_omega_body`] with a caller-chosen bound on `|det E'|`.
@@ -609,14 +617,19 @@ impl EulerConvention {
         tolerance: f64,
     ) -> Result<(), KinematicsError> {
         let det = self.rate_determinant(angles);
-        // `!(… >= …)` also rejects a NaN determinant.
-        if !(det.abs() >= real(tolerance)) {
+        // Written so that a NaN determinant is rejected too.
+        let regular = det.abs() >= real(tolerance);
+        if !regular {
             return Err(self.rate_error(angles, tolerance));
         }
         Ok(())
     }
 
-    fn rate_error<T: RealField + Copy>(&self, angles: &Vector3<T>, tolerance: f64) -> KinematicsError {
+    fn rate_error<T: RealField + Copy>(
+        &self,
+        angles: &Vector3<T>,
+        tolerance: f64,
+    ) -> KinematicsError {
         KinematicsError::EulerRateSingular {
             convention: *self,
             middle_angle: to_f64(angles.y),
@@ -655,12 +668,11 @@ fn proper_intrinsic<T: RealField + Copy>(q: &Quaternion<T>, i: usize, j: usize) 
     let beta = T::atan2(cd, ab) * real::<T>(2.0);
     let mut half_sum = T::atan2(b, a);
     let mut half_diff = T::atan2(d, c);
-    let norm = ab.hypot(cd);
-    // Exact lock (up to round-off): put the whole rotation about the locked axis into α.
-    let exact: T = norm * real(4.0 * f64::EPSILON);
-    if cd <= exact {
+    // Exact lock (a vanishing pair): only α ± γ is defined; put it all into α. Near (but not at)
+    // lock the computed pair is kept: it reproduces the rotation to round-off.
+    if cd == T::zero() {
         half_diff = half_sum;
-    } else if ab <= exact {
+    } else if ab == T::zero() {
         half_sum = half_diff;
     }
     let alpha = wrap(half_sum + half_diff);

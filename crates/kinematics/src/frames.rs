@@ -105,7 +105,12 @@ impl<T: RealField + Copy> RotatingFrame<T> {
     /// The Coriolis, centrifugal and Euler forces on a particle of mass `mass` at `r` with
     /// velocity `v_r` relative to the rotating frame.
     #[must_use]
-    pub fn fictitious_forces(&self, mass: T, r: &Vector3<T>, v_r: &Vector3<T>) -> FictitiousForces<T> {
+    pub fn fictitious_forces(
+        &self,
+        mass: T,
+        r: &Vector3<T>,
+        v_r: &Vector3<T>,
+    ) -> FictitiousForces<T> {
         let two: T = real(2.0);
         FictitiousForces {
             coriolis: -(self.omega.cross(v_r) * (two * mass)),

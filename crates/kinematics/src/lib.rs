@@ -50,7 +50,7 @@ pub enum KinematicsError {
     /// Euler rates cannot be recovered from an angular velocity at (or too near) gimbal lock.
     #[error(
         "Euler rates are singular for {convention} at middle angle {middle_angle} rad: \
-         |det E| = {determinant:e} is below the tolerance {tolerance:e} \
+         det E = {determinant:e}, smaller in magnitude than the tolerance {tolerance:e} \
          (gimbal lock at {singular_at})"
     )]
     EulerRateSingular {

@@ -117,7 +117,9 @@ pub fn exp_quat<T: RealField + Copy>(w: &Vector3<T>) -> UnitQuaternion<T> {
     let half_theta_sq = w.norm_squared() * quarter;
     let s = sinc_from_sq(half_theta_sq) * half; // sin(θ/2)/θ
     let c = cos_from_sq(half_theta_sq);
-    UnitQuaternion::new_unchecked(Quaternion::new(c, w.x * s, w.y * s, w.z * s))
+    // cos² + sin² = 1 holds only to a few ulps in floating point; renormalizing keeps the
+    // rotation matrices built from this quaternion orthogonal to about one ulp.
+    UnitQuaternion::new_normalize(Quaternion::new(c, w.x * s, w.y * s, w.z * s))
 }
 
 /// `exp(ω)`: the rotation by angle `|ω|` about the axis `ω/|ω|` (right-hand rule).
@@ -245,9 +247,7 @@ pub fn cayley<T: RealField + Copy>(w: &Vector3<T>) -> Rotation3<T> {
     let four: T = real(4.0);
     let k = four / (four + w.norm_squared());
     let wh = hat(w);
-    Rotation3::from_matrix_unchecked(
-        Matrix3::identity() + (wh + wh * wh * real::<T>(0.5)) * k,
-    )
+    Rotation3::from_matrix_unchecked(Matrix3::identity() + (wh + wh * wh * real::<T>(0.5)) * k)
 }
 
 /// The inverse Cayley map `cay⁻¹(R) = 2 vee(R − Rᵀ)/(1 + tr R)`.
@@ -255,10 +255,14 @@ pub fn cayley<T: RealField + Copy>(w: &Vector3<T>) -> Rotation3<T> {
 /// # Errors
 /// [`KinematicsError::CayleySingular`] when `1 + tr R ≤ 1e-12` (a rotation by π, or within about
 /// 1e-6 rad of one): no finite Cayley vector exists there.
-pub fn try_cayley_inv<T: RealField + Copy>(r: &Rotation3<T>) -> Result<Vector3<T>, KinematicsError> {
+pub fn try_cayley_inv<T: RealField + Copy>(
+    r: &Rotation3<T>,
+) -> Result<Vector3<T>, KinematicsError> {
     let m = r.matrix();
     let denom = T::one() + m[(0, 0)] + m[(1, 1)] + m[(2, 2)];
-    if !(denom > real(1e-12)) {
+    // Written so that a NaN trace is rejected too.
+    let regular = denom > real(1e-12);
+    if !regular {
         return Err(KinematicsError::CayleySingular {
             one_plus_trace: to_f64(denom),
         });
