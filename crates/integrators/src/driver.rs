@@ -92,7 +92,11 @@ pub struct Event<'a, S> {
 
 impl<'a, S> Event<'a, S> {
     /// An event from a closure.
-    pub fn new(function: impl Fn(f64, &S) -> f64 + 'a, direction: Direction, action: Action) -> Self {
+    pub fn new(
+        function: impl Fn(f64, &S) -> f64 + 'a,
+        direction: Direction,
+        action: Action,
+    ) -> Self {
         Self {
             function: Box::new(function),
             direction,
@@ -269,7 +273,14 @@ impl<'a> Driver<'a> {
         h: f64,
         observer: &mut O,
     ) -> Result<Report<St::State>, Error> {
-        self.fixed_loop(stepper, problem, state, h, observer, None::<&mut NoEvents<'_, St::State>>)
+        self.fixed_loop(
+            stepper,
+            problem,
+            state,
+            h,
+            observer,
+            None::<&mut NoEvents<'_, St::State>>,
+        )
     }
 
     /// Integrates with fixed steps `h` and locates `events` on the stepper's dense output.
@@ -357,7 +368,8 @@ impl<'a> Driver<'a> {
             t = t_next;
             report.t = t;
             let last = k + 1 == n;
-            if (report.steps % self.every == 0 || last) && observer.observe(t, state) == Flow::Stop {
+            if (report.steps % self.every == 0 || last) && observer.observe(t, state) == Flow::Stop
+            {
                 report.status = Status::Stopped;
                 return Ok(report);
             }
@@ -450,7 +462,9 @@ impl<'a> Driver<'a> {
                     });
                 }
                 report.steps += 1;
-                if let Some(t_stop) = tracker.after_step(stepper, problem, t_next, state, &mut report) {
+                if let Some(t_stop) =
+                    tracker.after_step(stepper, problem, t_next, state, &mut report)
+                {
                     report.t = t_stop;
                     observer.observe(t_stop, state);
                     stepper.reset();
@@ -477,7 +491,6 @@ impl<'a> Driver<'a> {
         Ok(report)
     }
 }
-
 
 /// Event handling inside the loops (a trait so the fixed loop can run without events).
 trait EventHook<P: ?Sized, St: Stepper<P>> {

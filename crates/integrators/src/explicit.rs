@@ -331,7 +331,12 @@ impl<const S: usize, Y: VectorState, P: Ode<Y>> AdaptiveStepper<P> for ExplicitR
         };
         h0 = h0.min(h_max);
         copy_into(&mut self.ytmp, state);
-        for (o, f) in self.ytmp.as_mut_slice().iter_mut().zip(self.k[0].as_slice()) {
+        for (o, f) in self
+            .ytmp
+            .as_mut_slice()
+            .iter_mut()
+            .zip(self.k[0].as_slice())
+        {
             *o += h0 * f;
         }
         problem.rhs(t + h0, &self.ytmp, &mut self.k[1]);

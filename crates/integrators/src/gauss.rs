@@ -147,7 +147,9 @@ struct NewtonWork {
 
 impl std::fmt::Debug for NewtonWork {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("NewtonWork").field("n", &self.n).finish_non_exhaustive()
+        f.debug_struct("NewtonWork")
+            .field("n", &self.n)
+            .finish_non_exhaustive()
     }
 }
 
@@ -160,8 +162,10 @@ impl Clone for NewtonWork {
 impl NewtonWork {
     fn new(n: usize, s: usize) -> Self {
         let big = n * s;
-        let req = factor::lu_in_place_scratch::<usize, f64>(big, big, Par::Seq, Spec::default())
-            .or(solve::solve_in_place_scratch::<usize, f64>(big, 1, Par::Seq));
+        let req =
+            factor::lu_in_place_scratch::<usize, f64>(big, big, Par::Seq, Spec::default()).or(
+                solve::solve_in_place_scratch::<usize, f64>(big, 1, Par::Seq),
+            );
         Self {
             n,
             jac: vec![0.0; n * n],
@@ -215,7 +219,12 @@ impl<const S: usize, Y: VectorState> GaussStepper<S, Y> {
         let c = &self.method.table.c;
         for j in 0..S {
             copy_into(&mut self.ytmp, y);
-            for (o, zj) in self.ytmp.as_mut_slice().iter_mut().zip(self.z[j].as_slice()) {
+            for (o, zj) in self
+                .ytmp
+                .as_mut_slice()
+                .iter_mut()
+                .zip(self.z[j].as_slice())
+            {
                 *o += zj;
             }
             problem.rhs(t + c[j] * h, &self.ytmp, &mut self.f[j]);
@@ -265,18 +274,22 @@ impl<const S: usize, Y: VectorState> GaussStepper<S, Y> {
         max_abs(y.as_slice()) + zmax
     }
 
-    /// Decides after an iteration with increment `dyno` (previous `prev`): `Some(true)`
-    /// converged, `Some(false)` failed, `None` go on.
-    fn verdict(&self, dyno: f64, prev: f64, y: &Y) -> Option<bool> {
+    /// Decides after an iteration with increment `dyno` (previous `prev`, smallest so far
+    /// `best`): `Some(true)` converged, `Some(false)` failed, `None` go on.
+    ///
+    /// Converged when the increment is zero, or stops decreasing at round-off level
+    /// (`≤ 10⁴ ε (‖y‖ + ‖Z‖)`). An increment that stops decreasing above that level is a
+    /// non-monotone phase of a slow contraction, and the iteration goes on; one that grows
+    /// a million-fold above the best seen (or is not finite) diverges.
+    fn verdict(&self, dyno: f64, prev: f64, best: f64, y: &Y) -> Option<bool> {
         if dyno == 0.0 {
             return Some(true);
         }
-        if !dyno.is_finite() {
+        if !dyno.is_finite() || dyno > 1e6 * best {
             return Some(false);
         }
-        if dyno >= prev {
-            // Stopped decreasing: converged if at round-off level, else diverging.
-            return Some(dyno <= 1e4 * f64::EPSILON * self.scale(y));
+        if dyno >= prev && dyno <= 1e4 * f64::EPSILON * self.scale(y) {
+            return Some(true);
         }
         None
     }
@@ -290,6 +303,7 @@ impl<const S: usize, Y: VectorState> GaussStepper<S, Y> {
     ) -> Result<(), Error> {
         let a = &self.method.table.a;
         let mut prev = f64::INFINITY;
+        let mut best = f64::INFINITY;
         for iter in 1..=self.method.max_iterations {
             self.iterations = iter;
             self.eval_stages(problem, t, y, h);
@@ -308,17 +322,23 @@ impl<const S: usize, Y: VectorState> GaussStepper<S, Y> {
                 }
             }
             std::mem::swap(&mut self.z, &mut self.znew);
-            match self.verdict(dyno, prev, y) {
+            match self.verdict(dyno, prev, best, y) {
                 Some(true) => return Ok(()),
                 Some(false) => return Err(no_convergence(t, h, iter, dyno, y)),
-                None => prev = dyno,
+                None => {
+                    prev = dyno;
+                    best = best.min(dyno);
+                }
             }
         }
         Err(no_convergence(t, h, self.method.max_iterations, prev, y))
     }
 
     fn jacobian<P: Ode<Y> + ?Sized>(&mut self, problem: &P, t: f64, y: &Y) {
-        let work = self.newton.as_mut().expect("Newton workspace exists for the Newton solver");
+        let work = self
+            .newton
+            .as_mut()
+            .expect("Newton workspace exists for the Newton solver");
         let n = work.n;
         if problem.jacobian(t, y, &mut work.jac) {
             return;
@@ -385,6 +405,7 @@ impl<const S: usize, Y: VectorState> GaussStepper<S, Y> {
             }
         }
         let mut prev = f64::INFINITY;
+        let mut best = f64::INFINITY;
         for iter in 1..=self.method.max_iterations {
             self.iterations = iter;
             self.eval_stages(problem, t, y, h);
@@ -418,10 +439,13 @@ impl<const S: usize, Y: VectorState> GaussStepper<S, Y> {
                     dyno = dyno.max(dz.abs());
                 }
             }
-            match self.verdict(dyno, prev, y) {
+            match self.verdict(dyno, prev, best, y) {
                 Some(true) => return Ok(()),
                 Some(false) => return Err(no_convergence(t, h, iter, dyno, y)),
-                None => prev = dyno,
+                None => {
+                    prev = dyno;
+                    best = best.min(dyno);
+                }
             }
         }
         Err(no_convergence(t, h, self.method.max_iterations, prev, y))
@@ -442,9 +466,8 @@ impl<const S: usize, Y: VectorState, P: Ode<Y> + ?Sized> Stepper<P> for GaussSte
     type State = Y;
 
     fn step(&mut self, problem: &P, t: f64, state: &mut Y, h: f64) -> Result<(), Error> {
-        let continuing = self.have_last
-            && same_time(t, self.t_last)
-            && state.as_slice() == self.last.as_slice();
+        let continuing =
+            self.have_last && same_time(t, self.t_last) && state.as_slice() == self.last.as_slice();
         if !continuing {
             self.carry.as_mut_slice().fill(0.0);
         }

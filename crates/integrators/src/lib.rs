@@ -75,7 +75,7 @@ pub mod verification;
 pub use composition::Composition;
 pub use control::PiController;
 pub use driver::{
-    Action, Direction, Driver, Event, EventRecord, FnObserver, Flow, NoObserver, Observer, Report,
+    Action, Direction, Driver, Event, EventRecord, Flow, FnObserver, NoObserver, Observer, Report,
     Status,
 };
 pub use error::Error;
@@ -90,4 +90,6 @@ pub use problem::{
 pub use registry::{Family, MethodInfo, Properties};
 pub use state::{State, VectorState};
 pub use stepper::{AdaptiveStepper, DenseOutput, Stepper, Tolerances};
-pub use symplectic::{HamiltonianStepper, Splitting, SplittingStepper, StormerVerlet, SymplecticEuler};
+pub use symplectic::{
+    HamiltonianStepper, Splitting, SplittingStepper, StormerVerlet, SymplecticEuler,
+};

@@ -195,9 +195,18 @@ pub const METHODS: &[MethodInfo] = &[
     },
     composition_entry(&composition::YOSHIDA4, "triple jump (Yoshida 1990)"),
     composition_entry(&composition::YOSHIDA6, "Yoshida 1990, solution A"),
-    composition_entry(&composition::YOSHIDA8, "Yoshida 1990, solution D (refined to 30 digits)"),
-    composition_entry(&composition::SUZUKI4, "Suzuki's fractal, 5 stages (Suzuki 1990)"),
-    composition_entry(&composition::MCLACHLAN4, "5 stages, γ₁ = 0.28 (McLachlan 1995)"),
+    composition_entry(
+        &composition::YOSHIDA8,
+        "Yoshida 1990, solution D (refined to 30 digits)",
+    ),
+    composition_entry(
+        &composition::SUZUKI4,
+        "Suzuki's fractal, 5 stages (Suzuki 1990)",
+    ),
+    composition_entry(
+        &composition::MCLACHLAN4,
+        "5 stages, γ₁ = 0.28 (McLachlan 1995)",
+    ),
     composition_entry(&composition::KAHAN_LI6, "s9odr6a (Kahan & Li 1997)"),
     composition_entry(&composition::KAHAN_LI8, "s17odr8a (Kahan & Li 1997)"),
     composition_entry(

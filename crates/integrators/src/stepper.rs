@@ -29,8 +29,7 @@ pub trait Stepper<P: ?Sized> {
     /// # Errors
     /// Numerical failures of the step (non-convergence of implicit stages, a singular
     /// Newton matrix), with the time and the state at the start of the step.
-    fn step(&mut self, problem: &P, t: f64, state: &mut Self::State, h: f64)
-    -> Result<(), Error>;
+    fn step(&mut self, problem: &P, t: f64, state: &mut Self::State, h: f64) -> Result<(), Error>;
 
     /// Forgets every cached value (called by drivers when they change the state).
     fn reset(&mut self) {}

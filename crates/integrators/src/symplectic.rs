@@ -107,7 +107,13 @@ impl<Y: VectorState> HamiltonianStepper<Y> {
     }
 
     /// `q ← q + s ∂T/∂p(p)`.
-    fn drift<H: SeparableHamiltonian + ?Sized>(&mut self, problem: &H, y: &mut Y, d: usize, s: f64) {
+    fn drift<H: SeparableHamiltonian + ?Sized>(
+        &mut self,
+        problem: &H,
+        y: &mut Y,
+        d: usize,
+        s: f64,
+    ) {
         {
             let (_, p) = y.as_slice().split_at(d);
             let (_, dt) = self.work.as_mut_slice().split_at_mut(d);

@@ -3,7 +3,7 @@
 //! Lie-group methods are measured with the same harness).
 //!
 //! # Observed order
-//! [`OrderStudy`] runs a method at steps `h₀, h₀/2, h₀/4, …`, measures the error against an
+//! [`OrderStudy`] runs a method at steps `h₀, h₀/2, h₀/4, …` (or another ratio), measures the error against an
 //! exact solution, keeps the longest run of consecutive points that lie above the round-off
 //! floor (default `1e-13`), below a ceiling (outside the asymptotic regime), and decrease by
 //! at least a factor 1.2 from one point to the next (before stagnation), requires at least
@@ -28,8 +28,15 @@ use crate::state::VectorState;
 pub struct OrderStudy {
     /// Largest step.
     pub h0: f64,
-    /// Number of steps sizes (`h₀ / 2^k`, `k = 0 … count−1`).
+    /// Number of step sizes (`h₀ / r^k`, `k = 0 … count−1`).
     pub count: usize,
+    /// Ratio `r` of consecutive steps: 2 (halving) by default. A smaller ratio
+    /// (`2^{1/3}`) resolves methods of order ≥ 10, whose error falls three decades per
+    /// halving, when the asymptotic regime spans fewer decades above the floor.
+    pub ratio: f64,
+    /// When set, every step is snapped to `span / N` with `N` an integer, so a fixed-step
+    /// run lands on the horizon with equal steps.
+    pub span: Option<f64>,
     /// Errors at or below this are round-off dominated and not fitted.
     pub floor: f64,
     /// Errors above this are outside the asymptotic regime and not fitted.
@@ -43,21 +50,52 @@ impl OrderStudy {
         Self {
             h0,
             count,
+            ratio: 2.0,
+            span: None,
             floor: 1e-13,
             ceiling: 1e-2,
         }
+    }
+
+    /// Same study with ratio `r` between consecutive steps.
+    #[must_use]
+    pub fn with_ratio(mut self, ratio: f64) -> Self {
+        self.ratio = ratio;
+        self
+    }
+
+    /// Same study with steps snapped to `span / N`, `N` integer.
+    #[must_use]
+    pub fn on_span(mut self, span: f64) -> Self {
+        self.span = Some(span);
+        self
+    }
+
+    /// The step sizes of the study.
+    #[must_use]
+    pub fn steps(&self) -> Vec<f64> {
+        (0..self.count)
+            .map(|k| {
+                let h = self.h0 / self.ratio.powi(k as i32);
+                match self.span {
+                    Some(span) => span / (span / h).round().max(1.0),
+                    None => h,
+                }
+            })
+            .collect()
     }
 
     /// Runs `error_at(h)` for every step size and fits the slope.
     ///
     /// # Errors
     /// Whatever `error_at` returns.
-    pub fn run(&self, mut error_at: impl FnMut(f64) -> Result<f64, Error>) -> Result<OrderFit, Error> {
+    pub fn run(
+        &self,
+        mut error_at: impl FnMut(f64) -> Result<f64, Error>,
+    ) -> Result<OrderFit, Error> {
         let mut points = Vec::with_capacity(self.count);
-        let mut h = self.h0;
-        for _ in 0..self.count {
+        for h in self.steps() {
             points.push((h, error_at(h)?));
-            h *= 0.5;
         }
         Ok(OrderFit::from_points(points, self.floor, self.ceiling))
     }
@@ -159,7 +197,9 @@ pub fn fit_power_law(xs: &[f64], ys: &[f64]) -> f64 {
 /// Largest absolute componentwise difference.
 #[must_use]
 pub fn max_abs_diff(a: &[f64], b: &[f64]) -> f64 {
-    a.iter().zip(b).fold(0.0_f64, |m, (x, y)| m.max((x - y).abs()))
+    a.iter()
+        .zip(b)
+        .fold(0.0_f64, |m, (x, y)| m.max((x - y).abs()))
 }
 
 /// Harmonic oscillator `H = p²/2 + q²/2`.

@@ -20,17 +20,9 @@ use super::GaussTableau;
 pub const GAUSS2: GaussTableau<1> = GaussTableau {
     name: "gauss2",
     order: 2,
-    c: [
-        5.00000000000000000000000000000e-1,
-    ],
-    b: [
-        1.00000000000000000000000000000,
-    ],
-    a: [
-        [
-            5.00000000000000000000000000000e-1,
-        ],
-    ],
+    c: [5.00000000000000000000000000000e-1],
+    b: [1.00000000000000000000000000000],
+    a: [[5.00000000000000000000000000000e-1]],
 };
 
 /// Gauss–Legendre with 2 stages, order 4.
@@ -262,4 +254,3 @@ pub const GAUSS12: GaussTableau<6> = GaussTableau {
         ],
     ],
 };
-

@@ -1,0 +1,15 @@
+//! Integration tests of tumble-integrators: one binary, one module per feature.
+
+mod support;
+
+mod composition_of_any_state;
+mod dense_output_and_events;
+mod driver_contract;
+mod error_control_rigid_body;
+mod long_run_brouwer;
+mod no_allocation_per_step;
+mod observed_order;
+mod quadratic_invariants;
+mod registry_lists_every_method;
+mod special_functions;
+mod tables_as_data;
