@@ -37,6 +37,10 @@
 //! * **Files.** OBJ via `tobj` (read as f64), STL via `stl_io` (ASCII and binary, f32 vertices);
 //!   vertices are merged only when exactly equal, so topology is checked on the surface as
 //!   stored, never welded by a guessed distance.
+//! * **The classroom exercise** (the article's ZYZ Euler angles, from `tumble-kinematics`):
+//!   [`MassProperties::turned_zyz`] gives the tensor `R I Rᵀ` of the turned body, and
+//!   [`MassProperties::principal_euler_zyz`] the angles that make it diagonal, with the
+//!   gimbal-lock flag passed through.
 //! * **No printing, no panics on input.** Every fallible function returns a typed error
 //!   ([`InertiaError`], [`MeshError`], [`LoadError`]); the `tumble inertia` command prints.
 //!
@@ -69,6 +73,7 @@
 //!   inertia tensor, principal axes, the parallel-axis theorem.
 
 mod error;
+mod euler;
 mod io;
 mod mass_properties;
 mod mesh;
@@ -79,6 +84,7 @@ mod sum;
 mod t_handle;
 
 pub use error::{Edge, InertiaError, LoadError, MeshError};
+pub use euler::off_diagonal_norm;
 pub use io::{MeshFormat, load_mesh, load_obj, load_stl};
 pub use mass_properties::{MassProperties, PointMass, parallel_axis_term};
 pub use mesh::{MassSpec, TriangleMesh, ValidationOptions};

@@ -34,6 +34,11 @@ pub struct PrincipalAxes {
     pub axes: Rotation3<f64>,
 }
 
+/// Whether every off-diagonal entry is exactly zero.
+fn is_diagonal(m: &Matrix3<f64>) -> bool {
+    (0..3).all(|i| (0..3).all(|j| i == j || m[(i, j)] == 0.0))
+}
+
 /// Whether a tensor must be positive definite or may be semi-definite (idealized bodies).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum Definiteness {
@@ -48,7 +53,9 @@ pub(crate) enum Definiteness {
 ///
 /// Canonical form: the first two axes are signed so that their component of largest magnitude
 /// is positive (the first such component on ties), and the third is their cross product, which
-/// makes the frame right-handed.
+/// makes the frame right-handed. An exactly diagonal tensor is already in its principal frame:
+/// its axes are the frame's own, sorted by moment (stably, so equal moments keep the order
+/// x, y, z), without calling the eigensolver.
 ///
 /// # Errors
 /// [`InertiaError::NonFiniteInertia`], [`InertiaError::NotSymmetric`] (beyond
@@ -74,17 +81,27 @@ pub fn principal_axes(inertia: &Matrix3<f64>) -> Result<PrincipalAxes, InertiaEr
             });
         }
     }
-    let a = Mat::<f64>::from_fn(3, 3, |i, j| 0.5 * (inertia[(i, j)] + inertia[(j, i)]));
-    let evd = a
-        .self_adjoint_eigen(Side::Lower)
-        .map_err(|_| InertiaError::EigenNoConvergence)?;
-    let s = evd.S().column_vector();
-    let u = evd.U();
-    let moments = Vector3::new(s[0], s[1], s[2]);
-    let mut columns = [Vector3::zeros(); 3];
-    for (k, column) in columns.iter_mut().enumerate() {
-        *column = Vector3::new(u[(0, k)], u[(1, k)], u[(2, k)]);
-    }
+    let (moments, mut columns) = if is_diagonal(inertia) {
+        // Already principal (every primitive, every symmetric body in its symmetry frame):
+        // sort the frame's own axes, stably, so equal moments keep x, y, z order.
+        let mut order = [0, 1, 2];
+        order.sort_by(|&i, &j| inertia[(i, i)].total_cmp(&inertia[(j, j)]));
+        (
+            Vector3::from_fn(|k, _| inertia[(order[k], order[k])]),
+            order.map(|i| Vector3::from_fn(|r, _| if r == i { 1.0 } else { 0.0 })),
+        )
+    } else {
+        let a = Mat::<f64>::from_fn(3, 3, |i, j| 0.5 * (inertia[(i, j)] + inertia[(j, i)]));
+        let evd = a
+            .self_adjoint_eigen(Side::Lower)
+            .map_err(|_| InertiaError::EigenNoConvergence)?;
+        let s = evd.S().column_vector();
+        let u = evd.U();
+        (
+            Vector3::new(s[0], s[1], s[2]),
+            [0, 1, 2].map(|k| Vector3::new(u[(0, k)], u[(1, k)], u[(2, k)])),
+        )
+    };
     for column in columns.iter_mut().take(2) {
         if column[column.iamax()] < 0.0 {
             *column = -*column;
