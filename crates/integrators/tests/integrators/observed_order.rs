@@ -115,4 +115,3 @@ fn every_method_has_its_order_on_kepler_e06() {
 fn every_method_has_its_order_on_the_pendulum_near_the_separatrix() {
     check_problem(Exact::Pendulum, PENDULUM, 1e-13);
 }
-
