@@ -17,6 +17,8 @@ struct Cli {
 
 #[derive(Subcommand, Debug)]
 enum Command {
+    /// Mass properties of a mesh file (OBJ or STL)
+    Inertia(cmd::inertia::Args),
     /// Angular velocity from Euler angles and rates, in the space and body frames
     Kinematics(cmd::kinematics::Args),
 }
@@ -24,6 +26,7 @@ enum Command {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
+        Command::Inertia(args) => cmd::inertia::run(&args),
         Command::Kinematics(args) => cmd::kinematics::run(&args),
     };
     match result {

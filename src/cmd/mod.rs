@@ -1,3 +1,4 @@
 //! One module per subcommand: each has its clap `Args` and a `run` returning `anyhow::Result`.
 
+pub mod inertia;
 pub mod kinematics;

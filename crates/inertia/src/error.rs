@@ -187,7 +187,7 @@ pub enum MeshError {
     },
     /// A face has (nearly) zero area: a repeated vertex, or three (nearly) collinear vertices.
     #[error(
-        "degenerate face {face} (vertices {} {} {}): area {area:e} is below the tolerance {tolerance:e} \
+        "degenerate face {face} (vertices {} {} {}): area {area:.3e} is below the tolerance {tolerance:.3e} \
          (relative tolerance × bounding-box diagonal²)",
         vertices[0], vertices[1], vertices[2]
     )]
@@ -230,7 +230,7 @@ pub enum MeshError {
     },
     /// The mesh is closed and consistently oriented, but its faces point inwards.
     #[error(
-        "mesh is inverted: its faces point inwards (signed volume {signed_volume:e} < 0); \
+        "mesh is inverted: its faces point inwards (signed volume {signed_volume:.6e} < 0); \
          reverse the face winding, or ask for the mesh to be flipped"
     )]
     Inverted {
@@ -239,7 +239,7 @@ pub enum MeshError {
     },
     /// The mesh encloses no volume (e.g. a flat, doubly covered surface).
     #[error(
-        "mesh encloses no volume: signed volume {signed_volume:e} is within the tolerance {tolerance:e} of zero"
+        "mesh encloses no volume: signed volume {signed_volume:.3e} is within the tolerance {tolerance:.3e} of zero"
     )]
     ZeroVolume {
         /// The signed volume.

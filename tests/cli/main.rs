@@ -1,0 +1,3 @@
+//! Tests of the `tumble` binary: one module per subcommand, each running the built binary.
+
+mod inertia;
