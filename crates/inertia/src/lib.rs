@@ -44,6 +44,13 @@
 //! * **No printing, no panics on input.** Every fallible function returns a typed error
 //!   ([`InertiaError`], [`MeshError`], [`LoadError`]); the `tumble inertia` command prints.
 //!
+//! # Modules
+//!
+//! The main types are re-exported at the crate root; the modules hold the details:
+//! [`mesh`] (validation and the divergence-theorem integrals), [`primitives`] (closed forms),
+//! [`principal`] (eigendecomposition and realizability), [`io`] (OBJ and STL), [`shapes`] and
+//! [`t_handle`] (generated meshes), [`euler`] (the classroom exercise), [`error`].
+//!
 //! # Example
 //!
 //! ```
@@ -72,16 +79,16 @@
 //! - H. Goldstein, C. Poole, J. Safko, *Classical Mechanics*, 3rd ed. (2002), ch. 5: the
 //!   inertia tensor, principal axes, the parallel-axis theorem.
 
-mod error;
-mod euler;
-mod io;
+pub mod error;
+pub mod euler;
+pub mod io;
 mod mass_properties;
-mod mesh;
-mod primitives;
-mod principal;
+pub mod mesh;
+pub mod primitives;
+pub mod principal;
 pub mod shapes;
 mod sum;
-mod t_handle;
+pub mod t_handle;
 
 pub use error::{Edge, InertiaError, LoadError, MeshError};
 pub use euler::off_diagonal_norm;
