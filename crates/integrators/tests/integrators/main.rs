@@ -7,7 +7,6 @@ mod dense_output_and_events;
 mod driver_contract;
 mod error_control_rigid_body;
 mod long_run_brouwer;
-mod no_allocation_per_step;
 mod observed_order;
 mod quadratic_invariants;
 mod registry_lists_every_method;
