@@ -19,6 +19,8 @@ struct Cli {
 enum Command {
     /// Mass properties of a mesh file (OBJ or STL)
     Inertia(cmd::inertia::Args),
+    /// List every integrator: name, order, family, properties
+    Integrators(cmd::integrators::Args),
     /// Angular velocity from Euler angles and rates, in the space and body frames
     Kinematics(cmd::kinematics::Args),
 }
@@ -27,6 +29,7 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Inertia(args) => cmd::inertia::run(&args),
+        Command::Integrators(args) => cmd::integrators::run(&args),
         Command::Kinematics(args) => cmd::kinematics::run(&args),
     };
     match result {

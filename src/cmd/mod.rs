@@ -1,4 +1,5 @@
 //! One module per subcommand: each has its clap `Args` and a `run` returning `anyhow::Result`.
 
 pub mod inertia;
+pub mod integrators;
 pub mod kinematics;

@@ -8,7 +8,7 @@ use std::cell::Cell;
 use nalgebra::{DVector, SVector};
 use tumble_integrators::verification::{HarmonicOscillator, Kepler, RigidBodyEuler};
 use tumble_integrators::{
-    Counted, Driver, Error, ExplicitRungeKutta, FnObserver, FnOde, Flow, HamiltonianOde,
+    Counted, Driver, Error, ExplicitRungeKutta, Flow, FnObserver, FnOde, HamiltonianOde,
     NoObserver, Status, Tolerances, gauss4, gauss6,
 };
 
@@ -23,10 +23,17 @@ fn bad_parameters_are_errors() {
     let mut st = ExplicitRungeKutta::rk4().stepper(&y);
     let d = Driver::new(0.0, 1.0).unwrap();
     for h in [0.0, -0.1, f64::NAN, f64::INFINITY] {
-        let e = d.run_fixed(&mut st, &problem, &mut y, h, &mut NoObserver).unwrap_err();
-        assert!(matches!(e, Error::InvalidParameter { name: "h", .. }), "{e}");
+        let e = d
+            .run_fixed(&mut st, &problem, &mut y, h, &mut NoObserver)
+            .unwrap_err();
+        assert!(
+            matches!(e, Error::InvalidParameter { name: "h", .. }),
+            "{e}"
+        );
     }
-    let e = d.run_fixed(&mut st, &problem, &mut y, 2.0, &mut NoObserver).unwrap_err();
+    let e = d
+        .run_fixed(&mut st, &problem, &mut y, 2.0, &mut NoObserver)
+        .unwrap_err();
     assert!(matches!(e, Error::StepLargerThanHorizon { .. }), "{e}");
     assert!(Driver::new(1.0, 1.0).is_err());
     assert!(Driver::new(1.0, 0.0).is_err());
@@ -36,8 +43,13 @@ fn bad_parameters_are_errors() {
         assert!(Tolerances::new(r, a).is_err());
     }
     let mut st8 = ExplicitRungeKutta::dop853().stepper(&y);
-    let bad = Tolerances { rtol: -1.0, atol: 1e-6 };
-    let e = d.run_adaptive(&mut st8, &problem, &mut y, &bad, &mut [], &mut NoObserver).unwrap_err();
+    let bad = Tolerances {
+        rtol: -1.0,
+        atol: 1e-6,
+    };
+    let e = d
+        .run_adaptive(&mut st8, &problem, &mut y, &bad, &mut [], &mut NoObserver)
+        .unwrap_err();
     assert!(matches!(e, Error::InvalidParameter { name: "rtol", .. }));
 }
 
@@ -87,7 +99,11 @@ fn observers_are_called_every_n_steps_and_can_stop() {
     let mut calls = 0;
     let mut stop = FnObserver(|_t, _y: &V2| {
         calls += 1;
-        if calls == 3 { Flow::Stop } else { Flow::Continue }
+        if calls == 3 {
+            Flow::Stop
+        } else {
+            Flow::Continue
+        }
     });
     let r = Driver::new(0.0, 1.0)
         .unwrap()
@@ -109,7 +125,14 @@ fn cancellation_stops_the_run() {
     let r = Driver::new(0.0, 100.0)
         .unwrap()
         .cancel(&cancel)
-        .run_adaptive(&mut st, &problem, &mut y, &Tolerances::new(1e-10, 1e-10).unwrap(), &mut [], &mut NoObserver)
+        .run_adaptive(
+            &mut st,
+            &problem,
+            &mut y,
+            &Tolerances::new(1e-10, 1e-10).unwrap(),
+            &mut [],
+            &mut NoObserver,
+        )
         .unwrap();
     assert_eq!(r.status, Status::Cancelled);
     assert!(r.t < 100.0 && r.steps <= 5);
@@ -137,9 +160,19 @@ fn a_blow_up_is_a_non_finite_error_with_time_and_state() {
     let mut st = ExplicitRungeKutta::dp5().stepper(&y);
     let e = Driver::new(0.0, 2.0)
         .unwrap()
-        .run_adaptive(&mut st, &problem, &mut y, &Tolerances::new(1e-8, 1e-8).unwrap(), &mut [], &mut NoObserver)
+        .run_adaptive(
+            &mut st,
+            &problem,
+            &mut y,
+            &Tolerances::new(1e-8, 1e-8).unwrap(),
+            &mut [],
+            &mut NoObserver,
+        )
         .unwrap_err();
-    assert!(matches!(e, Error::StepSizeUnderflow { .. } | Error::NonFinite { .. }), "{e}");
+    assert!(
+        matches!(e, Error::StepSizeUnderflow { .. } | Error::NonFinite { .. }),
+        "{e}"
+    );
 }
 
 #[test]
@@ -185,9 +218,27 @@ fn evaluations_are_counted_exactly() {
         let mut y = V2::new(1.0, 0.0);
         let d = Driver::new(0.0, 1.0).unwrap();
         match which {
-            "rk4" => d.run_fixed(&mut ExplicitRungeKutta::rk4().stepper(&y), &problem, &mut y, 1.0 / n, &mut NoObserver),
-            "dp5" => d.run_fixed(&mut ExplicitRungeKutta::dp5().stepper(&y), &problem, &mut y, 1.0 / n, &mut NoObserver),
-            _ => d.run_fixed(&mut ExplicitRungeKutta::dop853().stepper(&y), &problem, &mut y, 1.0 / n, &mut NoObserver),
+            "rk4" => d.run_fixed(
+                &mut ExplicitRungeKutta::rk4().stepper(&y),
+                &problem,
+                &mut y,
+                1.0 / n,
+                &mut NoObserver,
+            ),
+            "dp5" => d.run_fixed(
+                &mut ExplicitRungeKutta::dp5().stepper(&y),
+                &problem,
+                &mut y,
+                1.0 / n,
+                &mut NoObserver,
+            ),
+            _ => d.run_fixed(
+                &mut ExplicitRungeKutta::dop853().stepper(&y),
+                &problem,
+                &mut y,
+                1.0 / n,
+                &mut NoObserver,
+            ),
         }
         .unwrap();
         problem.evaluations().rhs
@@ -205,15 +256,56 @@ fn runtime_sized_states_match_fixed_size_states() {
     let mut yd = DVector::from_row_slice(&RigidBodyEuler::INITIAL);
     let d = Driver::new(0.0, 5.0).unwrap();
     let tol = Tolerances::new(1e-10, 1e-10).unwrap();
-    d.run_adaptive(&mut ExplicitRungeKutta::dop853().stepper(&ys), &problem, &mut ys, &tol, &mut [], &mut NoObserver).unwrap();
-    d.run_adaptive(&mut ExplicitRungeKutta::dop853().stepper(&yd), &problem, &mut yd, &tol, &mut [], &mut NoObserver).unwrap();
+    d.run_adaptive(
+        &mut ExplicitRungeKutta::dop853().stepper(&ys),
+        &problem,
+        &mut ys,
+        &tol,
+        &mut [],
+        &mut NoObserver,
+    )
+    .unwrap();
+    d.run_adaptive(
+        &mut ExplicitRungeKutta::dop853().stepper(&yd),
+        &problem,
+        &mut yd,
+        &tol,
+        &mut [],
+        &mut NoObserver,
+    )
+    .unwrap();
     assert_eq!(ys.as_slice(), yd.as_slice());
     let mut ys = V3::from(RigidBodyEuler::INITIAL);
     let mut yd = DVector::from_row_slice(&RigidBodyEuler::INITIAL);
-    d.run_fixed(&mut gauss6().with_newton().stepper(&ys), &problem, &mut ys, 0.05, &mut NoObserver).unwrap();
-    d.run_fixed(&mut gauss6().with_newton().stepper(&yd), &problem, &mut yd, 0.05, &mut NoObserver).unwrap();
+    d.run_fixed(
+        &mut gauss6().with_newton().stepper(&ys),
+        &problem,
+        &mut ys,
+        0.05,
+        &mut NoObserver,
+    )
+    .unwrap();
+    d.run_fixed(
+        &mut gauss6().with_newton().stepper(&yd),
+        &problem,
+        &mut yd,
+        0.05,
+        &mut NoObserver,
+    )
+    .unwrap();
     assert_eq!(ys.as_slice(), yd.as_slice());
     let mut k = DVector::from_row_slice(&Kepler::initial(0.5));
-    d.run_fixed(&mut gauss6().stepper(&k), &HamiltonianOde(Kepler), &mut k, 0.01, &mut NoObserver).unwrap();
-    assert!((Kepler::angular_momentum(k.as_slice()) - Kepler::angular_momentum(&Kepler::initial(0.5))).abs() < 1e-14);
+    d.run_fixed(
+        &mut gauss6().stepper(&k),
+        &HamiltonianOde(Kepler),
+        &mut k,
+        0.01,
+        &mut NoObserver,
+    )
+    .unwrap();
+    assert!(
+        (Kepler::angular_momentum(k.as_slice()) - Kepler::angular_momentum(&Kepler::initial(0.5)))
+            .abs()
+            < 1e-14
+    );
 }

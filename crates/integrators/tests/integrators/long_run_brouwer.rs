@@ -36,17 +36,18 @@ struct LongRun {
     max: f64,
 }
 
-fn long_run<St: Stepper<P, State = V4>, P: ?Sized>(
-    mut a: St,
-    mut b: St,
-    problem: &P,
-) -> LongRun {
+fn long_run<St: Stepper<P, State = V4>, P: ?Sized>(mut a: St, mut b: St, problem: &P) -> LongRun {
     let mut ya = V4::from(Kepler::initial(E));
     let mut yb = ya;
     yb[0] = f64::from_bits(yb[0].to_bits() + 1);
     let ha = Kepler.energy(ya.as_slice());
     let hb = Kepler.energy(yb.as_slice());
-    let mut out = LongRun { ns: vec![], roundoff: vec![], energy: vec![], max: 0.0 };
+    let mut out = LongRun {
+        ns: vec![],
+        roundoff: vec![],
+        energy: vec![],
+        max: 0.0,
+    };
     let (mut sd, mut se, mut count) = (0.0, 0.0, 0u64);
     let mut block_start = 1u64 << 12;
     let mut t = 0.0;
@@ -96,7 +97,10 @@ fn check_gauss<const S: usize>(method: Gauss<S>) {
         rms_u.last().unwrap()
     );
     assert!((0.35..=0.65).contains(&alpha), "Brouwer exponent {alpha}");
-    assert!(drift.abs() < 0.1, "energy error bounded, no drift: exponent {drift}");
+    assert!(
+        drift.abs() < 0.1,
+        "energy error bounded, no drift: exponent {drift}"
+    );
     // without compensated summation the round-off part is larger (it is dominated by the
     // rounding of y + δ with |δ| ≪ |y| at every step)
     assert!(
@@ -129,6 +133,9 @@ fn kahan_li8_composition_keeps_energy_bounded_over_a_million_steps() {
         c.max,
         c.roundoff.last().unwrap()
     );
-    assert!(drift.abs() < 0.1, "energy error bounded, no drift: exponent {drift}");
+    assert!(
+        drift.abs() < 0.1,
+        "energy error bounded, no drift: exponent {drift}"
+    );
     assert!((0.35..=0.65).contains(&alpha), "round-off exponent {alpha}");
 }

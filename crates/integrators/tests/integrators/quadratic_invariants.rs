@@ -3,7 +3,9 @@
 
 use nalgebra::SVector;
 use tumble_integrators::verification::Kepler;
-use tumble_integrators::{Driver, ExplicitRungeKutta, FnObserver, Flow, HamiltonianOde, Stepper, gauss4, gauss6, gauss8};
+use tumble_integrators::{
+    Driver, ExplicitRungeKutta, Flow, FnObserver, HamiltonianOde, Stepper, gauss4, gauss6, gauss8,
+};
 
 type V4 = SVector<f64, 4>;
 
@@ -34,7 +36,10 @@ fn gauss_conserves_angular_momentum_to_round_off() {
         ("gauss4", max_drift(gauss4().stepper(&y0), steps)),
         ("gauss6", max_drift(gauss6().stepper(&y0), steps)),
         ("gauss8", max_drift(gauss8().stepper(&y0), steps)),
-        ("gauss6-newton", max_drift(gauss6().with_newton().stepper(&y0), steps)),
+        (
+            "gauss6-newton",
+            max_drift(gauss6().with_newton().stepper(&y0), steps),
+        ),
     ] {
         eprintln!("{name}: max relative drift of L = {drift:.2e} (bound {bound:.1e})");
         assert!(drift <= bound, "{name}: {drift:e}");

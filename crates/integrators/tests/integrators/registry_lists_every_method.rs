@@ -6,16 +6,36 @@ use tumble_integrators::tables::composition::ALL;
 #[test]
 fn registry_has_every_required_name_once() {
     let required = [
-        "rk4", "dp5", "dop853", "symplectic-euler", "verlet", "yoshida4", "yoshida6", "yoshida8",
-        "suzuki4", "mclachlan4", "kahan-li6", "kahan-li8", "sofroniou-spaletta10", "gauss2",
-        "gauss4", "gauss6", "gauss8", "gauss10", "gauss12",
+        "rk4",
+        "dp5",
+        "dop853",
+        "symplectic-euler",
+        "verlet",
+        "yoshida4",
+        "yoshida6",
+        "yoshida8",
+        "suzuki4",
+        "mclachlan4",
+        "kahan-li6",
+        "kahan-li8",
+        "sofroniou-spaletta10",
+        "gauss2",
+        "gauss4",
+        "gauss6",
+        "gauss8",
+        "gauss10",
+        "gauss12",
     ];
     for name in required {
         assert!(find(name).is_ok(), "{name} missing");
     }
     for (i, m) in METHODS.iter().enumerate() {
         assert_eq!(m.name, m.name.to_lowercase());
-        assert!(METHODS[i + 1..].iter().all(|o| o.name != m.name), "{} twice", m.name);
+        assert!(
+            METHODS[i + 1..].iter().all(|o| o.name != m.name),
+            "{} twice",
+            m.name
+        );
         assert!(m.order >= 1);
     }
     for t in ALL {

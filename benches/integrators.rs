@@ -1,0 +1,208 @@
+//! Criterion bench of tumble-integrators on Hairer's rigid-body problem
+//! `y' = (−2 y₂y₃, 1.25 y₁y₃, −0.5 y₁y₂)`, `y(0) = (1, 0, 0.9)`.
+//!
+//! - `step/<method>`: time of 1000 fixed steps of size 0.01 (criterion reports it per element:
+//!   ns per step). Runge–Kutta and Gauss–Legendre methods integrate the ODE; symplectic
+//!   Euler/Verlet-type methods are not applicable to a non-separable system, so the
+//!   compositions use Strang splitting of the rigid body into three exact rotations as their
+//!   base method (`strang` itself is listed too).
+//! - `dop853/<solver>/<tol>`: the whole integration over t ∈ [0, 20] at rtol = atol = tol by
+//!   our DOP853 and DP5 and, side by side in the same run, the DOP853 of the
+//!   `differential-equations` and `ode_solvers` crates on the same right-hand side. Before
+//!   measuring, the bench prints each solver's error against a Gauss–Legendre reference and
+//!   its number of steps.
+//!
+//! Run: `cargo bench --bench integrators`.
+
+use std::hint::black_box;
+
+use criterion::{Criterion, Throughput, criterion_group, criterion_main};
+use nalgebra::SVector;
+use tumble_integrators::tables::composition::ALL;
+use tumble_integrators::verification::{RigidBodyEuler, RigidBodySplit, max_abs_diff};
+use tumble_integrators::{
+    Composition, Driver, ExplicitRungeKutta, Gauss, NoObserver, Splitting, SplittingStepper,
+    Stepper, Tolerances, gauss2, gauss4, gauss6, gauss8, gauss10, gauss12,
+};
+
+type V3 = SVector<f64, 3>;
+
+const STEPS: u64 = 1000;
+const H: f64 = 0.01;
+
+fn run_steps<P: ?Sized, St: Stepper<P, State = V3>>(mut st: St, problem: &P) -> V3 {
+    let mut y = V3::from(RigidBodyEuler::INITIAL);
+    let mut t = 0.0;
+    for k in 0..STEPS {
+        st.step(problem, t, &mut y, H).expect("step");
+        t = (k + 1) as f64 * H;
+    }
+    y
+}
+
+fn bench_steps(c: &mut Criterion) {
+    let rb = RigidBodyEuler::default();
+    let y0 = V3::from(RigidBodyEuler::INITIAL);
+    let mut g = c.benchmark_group("step");
+    g.throughput(Throughput::Elements(STEPS));
+    g.bench_function("rk4", |b| {
+        b.iter(|| run_steps(ExplicitRungeKutta::rk4().stepper(&y0), black_box(&rb)))
+    });
+    g.bench_function("dp5", |b| {
+        b.iter(|| run_steps(ExplicitRungeKutta::dp5().stepper(&y0), black_box(&rb)))
+    });
+    g.bench_function("dop853", |b| {
+        b.iter(|| run_steps(ExplicitRungeKutta::dop853().stepper(&y0), black_box(&rb)))
+    });
+    fn gauss<const S: usize>(
+        g: &mut criterion::BenchmarkGroup<'_, criterion::measurement::WallTime>,
+        m: Gauss<S>,
+    ) {
+        let rb = RigidBodyEuler::default();
+        let y0 = V3::from(RigidBodyEuler::INITIAL);
+        g.bench_function(m.table.name, |b| {
+            b.iter(|| run_steps(m.stepper(&y0), black_box(&rb)))
+        });
+        let name = format!("{}-newton", m.table.name);
+        let newton = m.with_newton();
+        g.bench_function(&name, |b| {
+            b.iter(|| run_steps(newton.stepper(&y0), black_box(&rb)))
+        });
+    }
+    gauss(&mut g, gauss2());
+    gauss(&mut g, gauss4());
+    gauss(&mut g, gauss6());
+    gauss(&mut g, gauss8());
+    gauss(&mut g, gauss10());
+    gauss(&mut g, gauss12());
+    g.bench_function("strang", |b| {
+        b.iter(|| {
+            run_steps(
+                SplittingStepper::<V3>::new(Splitting::Strang),
+                black_box(&RigidBodySplit),
+            )
+        })
+    });
+    for table in ALL {
+        g.bench_function(table.name, |b| {
+            b.iter(|| {
+                run_steps(
+                    Composition::new(table, SplittingStepper::<V3>::new(Splitting::Strang)),
+                    black_box(&RigidBodySplit),
+                )
+            })
+        });
+    }
+    g.finish();
+}
+
+struct PeerRigidBody;
+
+impl differential_equations::prelude::ODE<f64, [f64; 3]> for PeerRigidBody {
+    fn diff(&self, _t: f64, y: &[f64; 3], dy: &mut [f64; 3]) {
+        dy[0] = -2.0 * y[1] * y[2];
+        dy[1] = 1.25 * y[0] * y[2];
+        dy[2] = -0.5 * y[0] * y[1];
+    }
+}
+
+impl ode_solvers::System<f64, ode_solvers::Vector3<f64>> for PeerRigidBody {
+    fn system(&self, _t: f64, y: &ode_solvers::Vector3<f64>, dy: &mut ode_solvers::Vector3<f64>) {
+        dy[0] = -2.0 * y[1] * y[2];
+        dy[1] = 1.25 * y[0] * y[2];
+        dy[2] = -0.5 * y[0] * y[1];
+    }
+}
+
+const T_END: f64 = 20.0;
+
+fn ours<const S: usize>(method: ExplicitRungeKutta<S>, tol: f64) -> (V3, u64) {
+    let rb = RigidBodyEuler::default();
+    let mut y = V3::from(RigidBodyEuler::INITIAL);
+    let mut st = method.stepper(&y);
+    let r = Driver::new(0.0, T_END)
+        .expect("horizon")
+        .run_adaptive(
+            &mut st,
+            &rb,
+            &mut y,
+            &Tolerances::new(tol, tol).expect("tol"),
+            &mut [],
+            &mut NoObserver,
+        )
+        .expect("integration");
+    (y, r.steps)
+}
+
+fn diffeq(tol: f64) -> ([f64; 3], usize) {
+    use differential_equations::prelude::*;
+    let sol = IVP::ode(&PeerRigidBody, 0.0, T_END, RigidBodyEuler::INITIAL)
+        .method(ExplicitRungeKutta::dop853().rtol(tol).atol(tol))
+        .t_eval([T_END])
+        .solve()
+        .expect("differential-equations DOP853");
+    (*sol.y.last().expect("final state"), sol.steps.accepted)
+}
+
+fn odesolvers(tol: f64) -> ([f64; 3], usize) {
+    let y0 = ode_solvers::Vector3::new(1.0, 0.0, 0.9);
+    let mut s = ode_solvers::Dop853::new(PeerRigidBody, 0.0, T_END, T_END, y0, tol, tol);
+    let stats = s.integrate().expect("ode_solvers DOP853");
+    // The boundary between nalgebra 0.34 (ode_solvers) and 0.35 (ours): plain numbers.
+    let y = s.y_out().last().expect("final state");
+    ([y[0], y[1], y[2]], stats.accepted_steps as usize)
+}
+
+fn bench_peers(c: &mut Criterion) {
+    let rb = RigidBodyEuler::default();
+    let mut reference = V3::from(RigidBodyEuler::INITIAL);
+    Driver::new(0.0, T_END)
+        .expect("horizon")
+        .run_fixed(
+            &mut gauss12().stepper(&reference),
+            &rb,
+            &mut reference,
+            T_END / 4000.0,
+            &mut NoObserver,
+        )
+        .expect("reference");
+    let mut g = c.benchmark_group("dop853");
+    for tol in [1e-6, 1e-10] {
+        let (y, n) = ours(ExplicitRungeKutta::dop853(), tol);
+        eprintln!(
+            "tol {tol:.0e} tumble dop853:            error {:.2e}, {n} steps",
+            max_abs_diff(y.as_slice(), reference.as_slice())
+        );
+        let (y, n) = ours(ExplicitRungeKutta::dp5(), tol);
+        eprintln!(
+            "tol {tol:.0e} tumble dp5:               error {:.2e}, {n} steps",
+            max_abs_diff(y.as_slice(), reference.as_slice())
+        );
+        let (y, n) = diffeq(tol);
+        eprintln!(
+            "tol {tol:.0e} differential-equations:   error {:.2e}, {n} steps",
+            max_abs_diff(&y, reference.as_slice())
+        );
+        let (y, n) = odesolvers(tol);
+        eprintln!(
+            "tol {tol:.0e} ode_solvers:              error {:.2e}, {n} steps",
+            max_abs_diff(&y, reference.as_slice())
+        );
+        g.bench_function(format!("tumble/{tol:.0e}"), |b| {
+            b.iter(|| ours(ExplicitRungeKutta::dop853(), black_box(tol)))
+        });
+        g.bench_function(format!("tumble-dp5/{tol:.0e}"), |b| {
+            b.iter(|| ours(ExplicitRungeKutta::dp5(), black_box(tol)))
+        });
+        g.bench_function(format!("differential-equations/{tol:.0e}"), |b| {
+            b.iter(|| diffeq(black_box(tol)))
+        });
+        g.bench_function(format!("ode_solvers/{tol:.0e}"), |b| {
+            b.iter(|| odesolvers(black_box(tol)))
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, bench_steps, bench_peers);
+criterion_main!(benches);
