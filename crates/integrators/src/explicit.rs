@@ -94,6 +94,9 @@ impl<const S: usize> ExplicitRungeKutta<S> {
             committed: false,
             dense_ready: false,
             continuing: false,
+            k0_y: y0.zeros_like(),
+            k0_t: f64::NAN,
+            k0_valid: false,
         }
     }
 }
@@ -115,6 +118,10 @@ pub struct ExplicitRkStepper<const S: usize, Y> {
     committed: bool,
     dense_ready: bool,
     continuing: bool,
+    /// `k[0] = f(k0_t, k0_y)` from a rejected attempt, reusable by the retry.
+    k0_y: Y,
+    k0_t: f64,
+    k0_valid: bool,
 }
 
 impl<const S: usize, Y: VectorState> ExplicitRkStepper<S, Y> {
@@ -147,11 +154,17 @@ impl<const S: usize, Y: VectorState> ExplicitRkStepper<S, Y> {
             && crate::state::same_time(t, self.t1)
             && y.as_slice() == self.y1.as_slice()
             && tab.fsal != 0;
+        let retry = self.k0_valid && t == self.k0_t && y.as_slice() == self.k0_y.as_slice();
         if self.continuing {
             let (first, rest) = self.k.split_at_mut(1);
             copy_into(&mut first[0], &rest[tab.fsal - 1]);
-        } else {
+        } else if !retry {
             problem.rhs(t, y, &mut self.k[0]);
+        }
+        if !retry {
+            copy_into(&mut self.k0_y, y);
+            self.k0_t = t;
+            self.k0_valid = true;
         }
         self.committed = false;
         self.dense_ready = false;
@@ -237,6 +250,7 @@ impl<const S: usize, Y: VectorState> ExplicitRkStepper<S, Y> {
         }
         self.committed = true;
         self.dense_ready = false;
+        self.k0_valid = false;
     }
 
     fn ensure_dense<P: Ode<Y>>(&mut self, problem: &P) {
@@ -268,6 +282,7 @@ impl<const S: usize, Y: VectorState, P: Ode<Y>> Stepper<P> for ExplicitRkStepper
     fn reset(&mut self) {
         self.committed = false;
         self.dense_ready = false;
+        self.k0_valid = false;
         self.t1 = f64::NAN;
     }
 }
@@ -353,6 +368,7 @@ impl<const S: usize, Y: VectorState, P: Ode<Y>> AdaptiveStepper<P> for ExplicitR
             (0.01 / d1.max(d2)).powf(1.0 / order)
         };
         self.committed = false;
+        self.k0_valid = false;
         (100.0 * h0).min(h1).min(h_max)
     }
 }

@@ -7,8 +7,10 @@
 //! Two stage solvers:
 //!
 //! - **Fixed-point iteration** `Z ← h (A ⊗ I) F(Z)`, iterated *until the increment stops
-//!   decreasing* (Hairer's `gni_irk2` criterion): the iteration then sits at round-off, and
-//!   no tolerance has to be chosen. Starting values come from the collocation polynomial of
+//!   decreasing* (Hairer's `gni_irk2` criterion) at round-off level (`≤ 10⁴ ε (‖y‖ + ‖Z‖)`):
+//!   the iteration then sits at round-off, and no accuracy tolerance has to be chosen. (A
+//!   non-monotone increment above that level is a slow contraction, and the iteration goes
+//!   on.) Starting values come from the collocation polynomial of
 //!   the previous step, `u(t₀ + θh) − y₀ = Σⱼ ℓⱼ(θ) Zⱼ` (Lagrange basis on `{0, c₁, …, c_s}`),
 //!   extrapolated to the new stage times.
 //! - **Simplified Newton** with `M = I − h A ⊗ J`, `J = ∂f/∂y(t₀, y₀)` (from the problem or by
@@ -43,7 +45,7 @@ use crate::tables::gauss::{GAUSS2, GAUSS4, GAUSS6, GAUSS8, GAUSS10, GAUSS12};
 /// How the stage equations are solved.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum StageSolver {
-    /// Fixed-point iteration until the increment stops decreasing.
+    /// Fixed-point iteration until the increment stops decreasing at round-off level.
     FixedPoint,
     /// Simplified Newton with a faer LU of `I − h A ⊗ J`.
     Newton,
