@@ -65,6 +65,7 @@ pub mod explicit;
 pub mod gauss;
 pub mod problem;
 pub mod registry;
+pub mod rigid;
 pub mod special;
 pub mod state;
 pub mod stepper;

@@ -6,6 +6,7 @@ mod composition_of_any_state;
 mod dense_output_and_events;
 mod driver_contract;
 mod error_control_rigid_body;
+mod exact_free_rigid_body;
 mod long_run_brouwer;
 mod observed_order;
 mod quadratic_invariants;
