@@ -8,6 +8,7 @@
 
 use std::path::PathBuf;
 
+use super::args::parse_triple;
 use anyhow::{Context, Result, bail};
 use nalgebra::{Matrix3, Point3, Vector3};
 use serde::Serialize;
@@ -73,26 +74,9 @@ fn point(p: &Point3<f64>) -> [f64; 3] {
     triple(&p.coords)
 }
 
-/// Parses `PHI,THETA,PSI` (radians, finite).
+/// Parses `PHI,THETA,PSI` (radians, finite; `pi/2`-style expressions accepted).
 fn parse_euler(text: &str) -> Result<Vector3<f64>> {
-    let parts: Vec<&str> = text.split(',').map(str::trim).collect();
-    if parts.len() != 3 {
-        bail!(
-            "--euler expects three comma-separated angles PHI,THETA,PSI in radians, got {} in `{text}`",
-            parts.len()
-        );
-    }
-    let mut angles = Vector3::zeros();
-    for (k, part) in parts.iter().enumerate() {
-        let angle: f64 = part
-            .parse()
-            .with_context(|| format!("--euler: angle {} (`{part}`) is not a number", k + 1))?;
-        if !angle.is_finite() {
-            bail!("--euler: angle {} (`{part}`) is not finite", k + 1);
-        }
-        angles[k] = angle;
-    }
-    Ok(angles)
+    parse_triple("euler", text)
 }
 
 /// Runs the subcommand.

@@ -5,11 +5,11 @@
 //! The defaults are the start of the article's spinning hoop: the hoop stands vertical
 //! (θ = π/2 in the ZYZ convention) and turns about the lab's vertical axis at φ̇ = 5 rad/s.
 
-use std::f64::consts::PI;
-
-use anyhow::{Context, Result, bail};
+use anyhow::{Context, Result};
 use nalgebra::Vector3;
 use tumble_kinematics::EulerConvention;
+
+use super::args::parse_triple;
 
 /// Flags of `tumble kinematics`.
 #[derive(clap::Args, Debug)]
@@ -25,45 +25,6 @@ pub struct Args {
     /// The three angle rates in rad/s, comma-separated.
     #[arg(long, default_value = "5,0,0", allow_hyphen_values = true)]
     pub rates: String,
-}
-
-/// Parses `1.5`, `pi`, `-pi/2`, `2pi/3`, `3*pi/4`.
-fn parse_angle(s: &str) -> Option<f64> {
-    let t = s.trim().to_ascii_lowercase().replace(' ', "");
-    if let Ok(x) = t.parse::<f64>() {
-        return Some(x);
-    }
-    let (num, den) = match t.split_once('/') {
-        Some((n, d)) => (n.to_string(), d.parse::<f64>().ok()?),
-        None => (t.clone(), 1.0),
-    };
-    let coeff = num.strip_suffix("pi")?.trim_end_matches('*');
-    let c = match coeff {
-        "" | "+" => 1.0,
-        "-" => -1.0,
-        other => other.parse::<f64>().ok()?,
-    };
-    Some(c * PI / den)
-}
-
-fn parse_triple(flag: &str, s: &str) -> Result<Vector3<f64>> {
-    let parts: Vec<&str> = s.split(',').collect();
-    if parts.len() != 3 {
-        bail!(
-            "--{flag} expects three comma-separated values, got {} in `{s}`",
-            parts.len()
-        );
-    }
-    let mut v = Vector3::zeros();
-    for (i, p) in parts.iter().enumerate() {
-        let x = parse_angle(p)
-            .with_context(|| format!("--{flag}: value {} (`{p}`) is not a number", i + 1))?;
-        if !x.is_finite() {
-            bail!("--{flag}: value {} (`{p}`) is not finite", i + 1);
-        }
-        v[i] = x;
-    }
-    Ok(v)
 }
 
 fn fmt_vec(v: &Vector3<f64>) -> String {
@@ -106,20 +67,4 @@ pub fn run(args: &Args) -> Result<()> {
         Err(e) => println!("rates from omega: not recoverable here: {e}"),
     }
     Ok(())
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn angle_expressions_parse() {
-        assert_eq!(parse_angle("1.5"), Some(1.5));
-        assert_eq!(parse_angle("pi"), Some(PI));
-        assert_eq!(parse_angle("-pi/2"), Some(-PI / 2.0));
-        assert_eq!(parse_angle("2pi/3"), Some(2.0 * PI / 3.0));
-        assert_eq!(parse_angle("3*pi/4"), Some(3.0 * PI / 4.0));
-        assert_eq!(parse_angle("pie"), None);
-        assert_eq!(parse_angle("x"), None);
-    }
 }

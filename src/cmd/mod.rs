@@ -1,5 +1,6 @@
 //! One module per subcommand: each has its clap `Args` and a `run` returning `anyhow::Result`.
 
+pub mod args;
 pub mod inertia;
 pub mod integrators;
 pub mod kinematics;
