@@ -1,11 +1,19 @@
 //! The registry: every method with its name, order, family and properties.
 //!
 //! Names are lowercase, author + order (`yoshida6`, `kahan-li8`), Gauss–Legendre by order
-//! (`gauss2` … `gauss12`). To add a method, append a [`MethodInfo`] to [`METHODS`] (the next
-//! issue adds the Lie-group family: `lgvi`, `rkmk4`, …); the registry tests check that names
-//! are unique and lowercase and that every composition and Gauss table is listed.
+//! (`gauss2` … `gauss12`), rigid-body methods by what they are (`lgvi`, `rkmk4`, `cg3`,
+//! `split2` … `split8`, `split-exact2`, `dmv`, `exact`). To add a method, append a
+//! [`MethodInfo`] to [`METHODS`]; the registry tests check that names are unique and lowercase
+//! and that every composition and Gauss table is listed.
+//!
+//! # Order
+//!
+//! [`Order`] is a finite order `p` (global error `O(hᵖ)`) or [`Order::Exact`] for a method with
+//! no truncation error (the exact free-rigid-body flow). It displays as the number or `exact`
+//! and serializes as the number or `null` (`tumble integrators --json`); [`Properties::exact`]
+//! says the same as a flag.
 
-use serde::Serialize;
+use serde::{Serialize, Serializer};
 
 use crate::tables::composition;
 
@@ -26,6 +34,8 @@ pub enum Family {
     LieGroup,
     /// Splitting into exactly solvable flows.
     Splitting,
+    /// The exact flow of a problem with a closed-form solution.
+    ExactFlow,
 }
 
 impl Family {
@@ -39,6 +49,62 @@ impl Family {
             Family::GaussLegendre => "gauss-legendre",
             Family::LieGroup => "lie-group",
             Family::Splitting => "splitting",
+            Family::ExactFlow => "exact-flow",
+        }
+    }
+}
+
+/// Order of convergence of a method.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Order {
+    /// Global error `O(hᵖ)`.
+    Finite(u32),
+    /// No truncation error: the method is the exact flow.
+    Exact,
+}
+
+impl Order {
+    /// The finite order, `None` for [`Order::Exact`].
+    #[must_use]
+    pub const fn value(self) -> Option<u32> {
+        match self {
+            Order::Finite(p) => Some(p),
+            Order::Exact => None,
+        }
+    }
+}
+
+impl std::fmt::Display for Order {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Order::Finite(p) => write!(f, "{p}"),
+            Order::Exact => f.write_str("exact"),
+        }
+    }
+}
+
+impl Serialize for Order {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        match self {
+            Order::Finite(p) => serializer.serialize_u32(*p),
+            Order::Exact => serializer.serialize_none(),
+        }
+    }
+}
+
+/// `order == p` for a finite order `p`; never for [`Order::Exact`].
+impl PartialEq<u32> for Order {
+    fn eq(&self, other: &u32) -> bool {
+        *self == Order::Finite(*other)
+    }
+}
+
+/// Finite orders compare as numbers; [`Order::Exact`] is above every finite order.
+impl PartialOrd<u32> for Order {
+    fn partial_cmp(&self, other: &u32) -> Option<std::cmp::Ordering> {
+        match self {
+            Order::Finite(p) => p.partial_cmp(other),
+            Order::Exact => Some(std::cmp::Ordering::Greater),
         }
     }
 }
@@ -58,6 +124,8 @@ pub struct Properties {
     pub dense_output: bool,
     /// Stays on a Lie group.
     pub lie_group: bool,
+    /// No truncation error (the exact flow); its [`Order`] is [`Order::Exact`].
+    pub exact: bool,
 }
 
 /// One registry entry.
@@ -66,7 +134,7 @@ pub struct MethodInfo {
     /// Lowercase unique name.
     pub name: &'static str,
     /// Order of convergence.
-    pub order: u32,
+    pub order: Order,
     /// Family.
     pub family: Family,
     /// Properties.
@@ -86,6 +154,7 @@ const EXPLICIT: Properties = Properties {
     adaptive: false,
     dense_output: true,
     lie_group: false,
+    exact: false,
 };
 const ADAPTIVE: Properties = Properties {
     adaptive: true,
@@ -98,11 +167,46 @@ const SYMPLECTIC_EXPLICIT: Properties = Properties {
     adaptive: false,
     dense_output: false,
     lie_group: false,
+    exact: false,
 };
 const GAUSS: Properties = Properties {
     explicit: false,
     ..SYMPLECTIC_EXPLICIT
 };
+/// Explicit, symplectic, symmetric, on the group (splittings, exact flows).
+const LIE_SYMPLECTIC_EXPLICIT: Properties = Properties {
+    lie_group: true,
+    ..SYMPLECTIC_EXPLICIT
+};
+/// Implicit, symplectic, symmetric, on the group (variational integrators).
+const LIE_VARIATIONAL: Properties = Properties {
+    explicit: false,
+    ..LIE_SYMPLECTIC_EXPLICIT
+};
+/// Explicit, neither symplectic nor symmetric, on the group (RKMK, Crouch–Grossman).
+const LIE_EXPLICIT: Properties = Properties {
+    dense_output: false,
+    lie_group: true,
+    ..EXPLICIT
+};
+
+const RIGID_BODY: &str = "rigid body: inertia J (any symmetric positive definite) and potential V(R) with its moment M(R)";
+
+const fn split_entry(
+    name: &'static str,
+    table: &'static crate::tables::CompositionTable,
+    summary: &'static str,
+) -> MethodInfo {
+    MethodInfo {
+        name,
+        order: Order::Finite(table.order),
+        family: Family::Splitting,
+        properties: LIE_SYMPLECTIC_EXPLICIT,
+        stages: table.gammas.len() as u32,
+        problem: RIGID_BODY,
+        summary,
+    }
+}
 
 const fn composition_entry(
     table: &'static crate::tables::CompositionTable,
@@ -110,7 +214,7 @@ const fn composition_entry(
 ) -> MethodInfo {
     MethodInfo {
         name: table.name,
-        order: table.order,
+        order: Order::Finite(table.order),
         family: Family::Composition,
         properties: SYMPLECTIC_EXPLICIT,
         stages: table.gammas.len() as u32,
@@ -122,7 +226,7 @@ const fn composition_entry(
 const fn gauss_entry(name: &'static str, stages: u32) -> MethodInfo {
     MethodInfo {
         name,
-        order: 2 * stages,
+        order: Order::Finite(2 * stages),
         family: Family::GaussLegendre,
         properties: GAUSS,
         stages,
@@ -135,7 +239,7 @@ const fn gauss_entry(name: &'static str, stages: u32) -> MethodInfo {
 pub const METHODS: &[MethodInfo] = &[
     MethodInfo {
         name: "rk4",
-        order: 4,
+        order: Order::Finite(4),
         family: Family::ExplicitRungeKutta,
         properties: EXPLICIT,
         stages: 4,
@@ -144,7 +248,7 @@ pub const METHODS: &[MethodInfo] = &[
     },
     MethodInfo {
         name: "dp5",
-        order: 5,
+        order: Order::Finite(5),
         family: Family::ExplicitRungeKutta,
         properties: ADAPTIVE,
         stages: 7,
@@ -153,7 +257,7 @@ pub const METHODS: &[MethodInfo] = &[
     },
     MethodInfo {
         name: "dop853",
-        order: 8,
+        order: Order::Finite(8),
         family: Family::ExplicitRungeKutta,
         properties: ADAPTIVE,
         stages: 12,
@@ -162,7 +266,7 @@ pub const METHODS: &[MethodInfo] = &[
     },
     MethodInfo {
         name: "symplectic-euler",
-        order: 1,
+        order: Order::Finite(1),
         family: Family::SymplecticPartitioned,
         properties: Properties {
             symmetric: false,
@@ -174,7 +278,7 @@ pub const METHODS: &[MethodInfo] = &[
     },
     MethodInfo {
         name: "verlet",
-        order: 2,
+        order: Order::Finite(2),
         family: Family::SymplecticPartitioned,
         properties: SYMPLECTIC_EXPLICIT,
         stages: 1,
@@ -183,7 +287,7 @@ pub const METHODS: &[MethodInfo] = &[
     },
     MethodInfo {
         name: "strang",
-        order: 2,
+        order: Order::Finite(2),
         family: Family::Splitting,
         properties: Properties {
             symplectic: false,
@@ -219,6 +323,87 @@ pub const METHODS: &[MethodInfo] = &[
     gauss_entry("gauss8", 4),
     gauss_entry("gauss10", 5),
     gauss_entry("gauss12", 6),
+    MethodInfo {
+        name: "lgvi",
+        order: Order::Finite(2),
+        family: Family::LieGroup,
+        properties: LIE_VARIATIONAL,
+        stages: 1,
+        problem: RIGID_BODY,
+        summary: "Lie group variational integrator (Lee, Leok & McClamroch 2005/2007), Newton on the Cayley vector; composes to 4/6/8",
+    },
+    MethodInfo {
+        name: "rkmk4",
+        order: Order::Finite(4),
+        family: Family::LieGroup,
+        properties: LIE_EXPLICIT,
+        stages: 4,
+        problem: "vector field on SO(3) × R^n: R' = R hat(xi(t, R, y)), y' = f(t, R, y)",
+        summary: "Runge–Kutta–Munthe-Kaas with the classical RK4 coefficients and the exact dexpinv (Munthe-Kaas 1999)",
+    },
+    MethodInfo {
+        name: "cg3",
+        order: Order::Finite(3),
+        family: Family::LieGroup,
+        properties: LIE_EXPLICIT,
+        stages: 3,
+        problem: "vector field on SO(3) × R^n: R' = R hat(xi(t, R, y)), y' = f(t, R, y)",
+        summary: "Crouch–Grossman order 3 (Crouch & Grossman 1993; coefficients as in Owren & Marthinsen 1999)",
+    },
+    MethodInfo {
+        name: "split2",
+        order: Order::Finite(2),
+        family: Family::Splitting,
+        properties: LIE_SYMPLECTIC_EXPLICIT,
+        stages: 1,
+        problem: RIGID_BODY,
+        summary: "Strang splitting into exact principal-axis rotations (and potential kicks): McLachlan 1993, Touma & Wisdom 1994, Dullweber, Leimkuhler & McLachlan 1997",
+    },
+    split_entry(
+        "split4",
+        &composition::MCLACHLAN4,
+        "split2 composed with mclachlan4 (McLachlan 1995, 5 stages)",
+    ),
+    split_entry(
+        "split6",
+        &composition::KAHAN_LI6,
+        "split2 composed with kahan-li6 (Kahan & Li 1997, s9odr6a)",
+    ),
+    split_entry(
+        "split8",
+        &composition::KAHAN_LI8,
+        "split2 composed with kahan-li8 (Kahan & Li 1997, s17odr8a)",
+    ),
+    MethodInfo {
+        name: "split-exact2",
+        order: Order::Finite(2),
+        family: Family::Splitting,
+        properties: LIE_SYMPLECTIC_EXPLICIT,
+        stages: 1,
+        problem: RIGID_BODY,
+        summary: "Strang splitting: potential kicks and the exact free-rigid-body flow (Celledoni, Fassò, Säfström & Zanna 2008); exact for V = 0",
+    },
+    MethodInfo {
+        name: "dmv",
+        order: Order::Finite(2),
+        family: Family::LieGroup,
+        properties: LIE_VARIATIONAL,
+        stages: 1,
+        problem: "free rigid body (inertia J)",
+        summary: "discrete Moser–Veselov (Moser & Veselov 1991), quaternion fixed point as in Hairer, Lubich & Wanner §VII.5",
+    },
+    MethodInfo {
+        name: "exact",
+        order: Order::Exact,
+        family: Family::ExactFlow,
+        properties: Properties {
+            exact: true,
+            ..LIE_SYMPLECTIC_EXPLICIT
+        },
+        stages: 1,
+        problem: "free rigid body (inertia J)",
+        summary: "exact free-rigid-body flow: Jacobi elliptic functions and Carlson's R_J (Celledoni, Fassò, Säfström & Zanna 2008, corrected)",
+    },
 ];
 
 /// Every method.

@@ -205,6 +205,13 @@ impl FreeRigidBody {
         self.moments
     }
 
+    /// Principal axes: the rotation `Q` whose columns are the body-frame principal axes, in the
+    /// order of [`Self::principal_moments`], so that `J = Q diag(I) Qᵀ`.
+    #[must_use]
+    pub fn principal_axes(&self) -> Rotation3<f64> {
+        self.axes
+    }
+
     /// Body-frame inertia tensor `J = Q diag(I) Qᵀ`.
     #[must_use]
     pub fn inertia(&self) -> Matrix3<f64> {

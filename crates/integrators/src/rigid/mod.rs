@@ -1,9 +1,78 @@
 //! Methods made for rotating bodies, and the exact free-rigid-body flow that measures them.
 //!
-//! * [`exact`]: the exact solution of the torque-free rigid body (Jacobi elliptic functions and
-//!   an elliptic integral of the third kind), used as the reference solution and as a sub-flow
-//!   of splitting methods.
+//! Conventions: `R` maps body to space components (active rotation); `m`, `Π` are body-frame
+//! angular momenta and `L = R m` the spatial one; `hat(ω) v = ω × v`; gravity is `−g e₃` in
+//! space.
+//!
+//! | module | what | registry |
+//! |---|---|---|
+//! | [`exact`] | the exact free-rigid-body flow (Jacobi elliptic functions, Carlson `R_J`) | `exact` ([`ExactStepper`]) |
+//! | [`state`] | [`RigidBodyState`] `(R, m)`, [`GroupState`] `(R, y) ∈ SO(3) × ℝᴺ`, [`CoupledState`] `(R, Π, q, p)` | |
+//! | [`problem`] | [`RigidBody`] (inertia `J`, potential `V(R)`, moment `M(R)`), [`HeavyTop`], [`LieVectorField`], [`EulerEquations`] | |
+//! | [`lgvi`] | Lee–Leok–McClamroch Lie group variational integrator, Newton on the Cayley vector | `lgvi` |
+//! | [`coupled`] | bodies coupled to `N` coordinates: [`CoupledLagrangian`], variational [`CoupledLgvi`], [`CoupledVectorField`] | |
+//! | [`lie_rk`] | Runge–Kutta–Munthe-Kaas and Crouch–Grossman on `SO(3) × ℝᴺ` | `rkmk4`, `cg3` |
+//! | [`splitting`] | principal-axis rotations + kicks (Strang, composed to 4/6/8), kicks + exact free flow | `split2` … `split8`, `split-exact2` |
+//! | [`dmv`] | discrete Moser–Veselov | `dmv` |
+//! | [`diagnostics`] | observers: energy, `R m`, `|m|`, `‖RᵀR − 𝟙‖` | |
+//!
+//! # Which method for which problem
+//!
+//! - A [`RigidBody`] (any `J`, any potential `V(R)`) on [`RigidBodyState`]: [`Lgvi`],
+//!   [`PrincipalAxisSplitting`] and its compositions [`split4`], [`split6`], [`split8`],
+//!   [`ExactSplitting`]; through [`EulerEquations`] on [`GroupState<3>`]: [`rkmk4`], [`cg3`].
+//! - The free body ([`FreeRigidBody`]): additionally [`Dmv`] and [`ExactStepper`].
+//! - A body coupled to `N` coordinates: implement [`CoupledLagrangian<N>`] once; then
+//!   [`CoupledLgvi<N>`] integrates [`CoupledState<N>`] variationally, and
+//!   [`CoupledVectorField`] on [`GroupState<Y>`] (`Y = 3 + 2N`) feeds `rkmk4` and `cg3`.
+//! - Any vector field on `SO(3) × ℝᴺ`: implement [`LieVectorField<N>`]; use [`rkmk4`], [`cg3`].
+//!
+//! Every symmetric order-2 stepper here composes to higher order with
+//! [`crate::Composition`] (e.g. `Composition::new(&YOSHIDA6, Lgvi::default())`).
+//!
+//! # Example
+//!
+//! ```
+//! use nalgebra::Vector3;
+//! use tumble_integrators::rigid::{FreeRigidBody, Lgvi, RigidBodyMonitor, RigidBodyState};
+//! use tumble_integrators::Driver;
+//! use tumble_kinematics::so3::exp;
+//!
+//! let body = FreeRigidBody::from_principal_moments(Vector3::new(1.0, 2.0, 3.0))?;
+//! let r0 = exp(&Vector3::new(0.3, -0.2, 0.9));
+//! let mut state = RigidBodyState::new(&r0, Vector3::new(0.2, 0.3, 1.0));
+//! let mut monitor = RigidBodyMonitor::new(&body);
+//! Driver::new(0.0, 10.0)?.run_fixed(&mut Lgvi::default(), &body, &mut state, 0.01, &mut monitor)?;
+//! let exact = body.flow(&r0, &Vector3::new(0.2, 0.3, 1.0))?.at(10.0);
+//! assert!((state.momentum - exact.1).norm() < 1e-3);
+//! assert!(monitor.deviations().spatial_momentum < 1e-13);
+//! # Ok::<(), tumble_integrators::Error>(())
+//! ```
 
+pub mod coupled;
+pub mod diagnostics;
+pub mod dmv;
 pub mod exact;
+pub mod lgvi;
+pub mod lie_rk;
+pub mod problem;
+pub mod splitting;
+pub mod state;
 
+pub use coupled::{
+    CoupledLagrangian, CoupledLgvi, CoupledVectorField, KineticBlocks, Scalar, coupled_energy,
+    coupled_kinetic_gradient, coupled_potential_gradient, coupled_state_from_velocities,
+    coupled_torque, coupled_velocities,
+};
+pub use diagnostics::{CoupledMonitor, Deviations, Initial, RigidBodyMonitor};
+pub use dmv::Dmv;
 pub use exact::{ExactFlow, FreeRigidBody};
+pub use lgvi::Lgvi;
+pub use lie_rk::{
+    CROUCH_GROSSMAN3, CrouchGrossman, LieRkTableau, RKMK4, Rkmk, cg3, rkmk4,
+};
+pub use problem::{EulerEquations, HeavyTop, LieVectorField, RigidBody};
+pub use splitting::{
+    ExactSplitting, ExactStepper, PrincipalAxisSplitting, split4, split6, split8,
+};
+pub use state::{CoupledState, GroupState, RigidBodyState};

@@ -1,5 +1,6 @@
 //! Integration tests of tumble-integrators: one binary, one module per feature.
 
+mod rigid_support;
 mod support;
 
 mod composition_of_any_state;
@@ -11,5 +12,6 @@ mod long_run_brouwer;
 mod observed_order;
 mod quadratic_invariants;
 mod registry_lists_every_method;
+mod rigid_body_orders;
 mod special_functions;
 mod tables_as_data;

@@ -45,7 +45,8 @@ fn registry_has_every_required_name_once() {
         assert!(m.properties.symmetric && m.properties.symplectic && m.properties.explicit);
     }
     let g = find("gauss12").unwrap();
-    assert_eq!((g.order, g.stages), (12, 6));
+    assert_eq!(g.order, 12);
+    assert_eq!(g.stages, 6);
     assert!(!g.properties.explicit && g.properties.symplectic);
     assert!(find("dop853").unwrap().properties.adaptive);
     assert!(find("nope").is_err());

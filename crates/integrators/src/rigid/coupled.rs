@@ -1,0 +1,537 @@
+//! A rigid body coupled to `N` vector-space coordinates (`SO(3) × ℝᴺ`): the model interface, a
+//! variational integrator built from a discrete Lagrangian, and the continuous equations as a
+//! [`LieVectorField`] for the Lie-group Runge–Kutta methods.
+//!
+//! # The model ([`CoupledLagrangian`])
+//!
+//! A body with a fixed point (or a free body's rotation about its centre of mass) whose
+//! configuration is `(R, q) ∈ SO(3) × ℝᴺ` — a bead on a hoop (`q = α`), a mass on a spring along
+//! a body axis, a rotor — with the Lagrangian
+//!
+//! ```text
+//! L(R, Ω, q, q̇) = ½ Ωᵀ J(q) Ω + Ωᵀ B(q) q̇ + ½ q̇ᵀ M(q) q̇ − V(R, q),
+//! ```
+//!
+//! `Ω` the body angular velocity (`Ṙ = R hat Ω`). A scene implements the two methods of
+//! [`CoupledLagrangian`] once, generic over the scalar ([`Scalar`]: `f64` and the dual numbers
+//! of `num-dual`); every derivative the integrators need (`∂T/∂q`, the moment
+//! `M = −∂V/∂η` of `V(R exp(hat η), q)`, `∂V/∂q`, the Newton Jacobian) is then computed by
+//! automatic differentiation, exactly. For a point mass `μ` at body position `r(q)` moving with
+//! the body: `J = μ(|r|² 𝟙 − r rᵀ)`, `B = μ hat(r) ∂r/∂q`, `M = μ (∂r/∂q)ᵀ ∂r/∂q`.
+//!
+//! The momenta are `Π = ∂L/∂Ω = J Ω + B q̇` (body frame; `R Π` is the spatial angular momentum
+//! about the fixed point) and `p = ∂L/∂q̇ = Bᵀ Ω + M q̇`, and the energy is
+//! `H = ½ (Ω·Π + q̇·p) + V`. The state is [`CoupledState`] `(R, Π, q, p)`.
+//!
+//! # The variational integrator ([`CoupledLgvi`])
+//!
+//! Discrete Lagrangian (midpoint in the kinetic energy, trapezoid in the potential), with the
+//! relative rotation `F_k = R_kᵀ R_{k+1} = cay(w)` and the discrete body velocity `ξ = w/h`:
+//!
+//! ```text
+//! L_d = h T(ξ, q̄, v) − (h/2) (V(R_k, q_k) + V(R_{k+1}, q_{k+1})),
+//! q̄ = (q_k + q_{k+1})/2,   v = (q_{k+1} − q_k)/h.
+//! ```
+//!
+//! Perturbing `R_{k+1} → R_{k+1} exp(hat η)` moves `w` by `A_R(w) η`, perturbing
+//! `R_k → R_k exp(hat η)` moves it by `−A_L(w) η`, with
+//! `A_R(w) = 𝟙 + ½ hat w + ¼ w wᵀ` and `A_L(w) = A_R(w)ᵀ` (the inverse trivialized tangents of
+//! the Cayley map). The discrete Legendre transforms `Π_k = −D_{R_k} L_d`,
+//! `p_k = −∂L_d/∂q_k`, `Π_{k+1} = D_{R_{k+1}} L_d`, `p_{k+1} = ∂L_d/∂q_{k+1}` (left-trivialized)
+//! then give the one-step map `(R_k, Π_k, q_k, p_k) ↦ (R_{k+1}, Π_{k+1}, q_{k+1}, p_{k+1})`:
+//!
+//! ```text
+//! 0 = Π_k + (h/2) M(R_k, q_k) − A_R(w) T_ξ,
+//! 0 = p_k − (h/2) V_q(R_k, q_k) + (h/2) T_q − T_v,                (solve for w, q_{k+1})
+//! R_{k+1} = R_k cay(w),
+//! Π_{k+1} = A_L(w) T_ξ + (h/2) M(R_{k+1}, q_{k+1}),
+//! p_{k+1} = T_v + (h/2) T_q − (h/2) V_q(R_{k+1}, q_{k+1}),
+//! ```
+//!
+//! with `T_ξ, T_q, T_v` the partial derivatives of `T` at `(ξ, q̄, v)`. The `3 + N` equations are
+//! solved by Newton's method from the explicit guess `w = hΩ_k`, `q_{k+1} = q_k + h q̇_k`; the
+//! Jacobian is exact (hyper-dual numbers: one evaluation of `T` gives the residual's `∂/∂w`, one
+//! its `∂/∂q_{k+1}`), the linear system is solved by block elimination (a 3×3 inverse and an
+//! `N×N` LU with partial pivoting, all on the stack). Iteration stops when the increment is at
+//! round-off or stops decreasing; otherwise [`Error::NoConvergence`].
+//!
+//! The map is symplectic and symmetric (the discrete Lagrangian is self-adjoint), hence of order
+//! 2 and composable to higher order with [`crate::Composition`]. If `V` is invariant under
+//! rotations about the space axis `e` (`V(exp(θ hat e) R, q) = V(R, q)`, e.g. gravity along `e`),
+//! so is `L_d`, and the discrete Noether theorem conserves `e · R_k Π_k` exactly (to round-off).
+//! For `N = 0` and constant `J` it is a Cayley-based relative of the LGVI of
+//! [`crate::rigid::Lgvi`] (the two discrete kinetic energies differ by `O(h³)`).
+//!
+//! # The continuous equations ([`CoupledVectorField`])
+//!
+//! `Ṙ = R hat Ω`, `Π̇ = Π × Ω + M(R, q)`, `q̇`, `ṗ = ∂T/∂q|_{Ω,q̇} − ∂V/∂q`, with `(Ω, q̇)` from
+//! the momenta by the Legendre transform; as a [`LieVectorField`] on `SO(3) × ℝʸ` with
+//! `y = (Π, q, p)`, `Y = 3 + 2N` (checked when the field is built), integrable by `rkmk4`, `cg3`
+//! (see [`CoupledState::to_group`]) or, flattened, by any vector-space method.
+//!
+//! # References
+//! - J. E. Marsden, M. West, *Discrete mechanics and variational integrators*, Acta Numerica 10
+//!   (2001) 357–514.
+//! - T. Lee, M. Leok, N. H. McClamroch, *Lie group variational integrators for the full body
+//!   problem*, Comput. Methods Appl. Mech. Eng. 196 (2007) 2907–2924.
+//! - N. Bou-Rabee, J. E. Marsden, *Hamilton–Pontryagin integrators on Lie groups*, Found.
+//!   Comput. Math. 9 (2009) 197–219 (Cayley-map discretizations).
+//! - M. Kobilarov, J. E. Marsden, *Discrete geometric optimal control on Lie groups*, IEEE
+//!   Trans. Robotics 27 (2011) 641–655 (the trivialized tangents of the Cayley map).
+
+use nalgebra::{Const, Matrix3, RealField, SMatrix, SVector, U1, Vector3};
+use num_dual::{DualVec, HyperDualVec};
+
+use tumble_kinematics::so3::{cayley, hat};
+
+use crate::error::{Error, check_step};
+use crate::rigid::lgvi::MAX_NEWTON_ITERATIONS;
+use crate::rigid::problem::LieVectorField;
+use crate::rigid::state::{CoupledState, check_coupled_dimension};
+use crate::stepper::Stepper;
+
+/// The scalars models are written in: `f64` and the (hyper-)dual numbers of `num-dual`.
+///
+/// Constants enter through `D::from(c)`; functions (`sin`, `sqrt`, …) are `RealField`'s.
+pub trait Scalar: RealField + Copy + From<f64> {}
+
+impl<T: RealField + Copy + From<f64>> Scalar for T {}
+
+/// The blocks of the kinetic energy `T = ½ ΩᵀJΩ + ΩᵀB q̇ + ½ q̇ᵀM q̇` at a configuration `q`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct KineticBlocks<D: Scalar, const N: usize> {
+    /// `J(q)`: body-frame inertia about the fixed point (symmetric positive definite).
+    pub rotational: Matrix3<D>,
+    /// `B(q)`: coupling of the body's rotation and the coordinates' rates (3 × N).
+    pub coupling: SMatrix<D, 3, N>,
+    /// `M(q)`: mass matrix of the coordinates (symmetric, N × N).
+    pub internal: SMatrix<D, N, N>,
+}
+
+/// A rigid body coupled to `N` coordinates, by its Lagrangian (see the module doc).
+///
+/// Both methods must be written generically over the scalar `D` (no branching on values that
+/// would break derivatives) and must not allocate.
+pub trait CoupledLagrangian<const N: usize> {
+    /// The kinetic-energy blocks `J(q)`, `B(q)`, `M(q)`.
+    fn kinetic<D: Scalar>(&self, q: &SVector<D, N>) -> KineticBlocks<D, N>;
+
+    /// The potential `V(R, q)`; `R` maps body to space components.
+    fn potential<D: Scalar>(&self, rotation: &Matrix3<D>, q: &SVector<D, N>) -> D;
+}
+
+/// `T`, `∂T/∂Ω`, `∂T/∂q̇` at velocities `(ξ, v)` for given blocks.
+fn kinetic_terms<D: Scalar, const N: usize>(
+    blocks: &KineticBlocks<D, N>,
+    xi: &Vector3<D>,
+    v: &SVector<D, N>,
+) -> (D, Vector3<D>, SVector<D, N>) {
+    let jx = blocks.rotational * xi;
+    let bv = blocks.coupling * v;
+    let mv = blocks.internal * v;
+    let t_xi = jx + bv;
+    let t_v = blocks.coupling.transpose() * xi + mv;
+    let half = D::from(0.5);
+    let t = half * xi.dot(&jx) + xi.dot(&bv) + half * v.dot(&mv);
+    (t, t_xi, t_v)
+}
+
+/// `A_R(w) = 𝟙 + ½ hat w + ¼ w wᵀ`.
+fn a_right<D: Scalar>(w: &Vector3<D>) -> Matrix3<D> {
+    Matrix3::identity() + hat(w) * D::from(0.5) + w * w.transpose() * D::from(0.25)
+}
+
+type Grad<const N: usize> = DualVec<f64, Const<N>>;
+
+fn grad_var<const N: usize>(x: f64, i: usize) -> Grad<N> {
+    Grad::<N>::from_re(x).derivative(i)
+}
+
+fn grad_of<const N: usize>(x: &Grad<N>) -> SVector<f64, N> {
+    x.eps.unwrap_generic(Const::<N>, U1)
+}
+
+/// The moment `M(R, q) = −∂/∂η V(R exp(hat η), q)|₀` (body frame), by automatic
+/// differentiation.
+#[must_use]
+pub fn coupled_torque<L: CoupledLagrangian<N> + ?Sized, const N: usize>(
+    model: &L,
+    rotation: &Matrix3<f64>,
+    q: &SVector<f64, N>,
+) -> Vector3<f64> {
+    let eta = Vector3::from_fn(|i, _| grad_var::<3>(0.0, i));
+    let r = rotation.map(Grad::<3>::from) * (Matrix3::identity() + hat(&eta));
+    let v = model.potential(&r, &q.map(Grad::<3>::from));
+    -grad_of(&v)
+}
+
+/// `∂V/∂q (R, q)` by automatic differentiation.
+#[must_use]
+pub fn coupled_potential_gradient<L: CoupledLagrangian<N> + ?Sized, const N: usize>(
+    model: &L,
+    rotation: &Matrix3<f64>,
+    q: &SVector<f64, N>,
+) -> SVector<f64, N> {
+    let qd = SVector::<Grad<N>, N>::from_fn(|i, _| grad_var::<N>(q[i], i));
+    let v = model.potential(&rotation.map(Grad::<N>::from), &qd);
+    grad_of(&v)
+}
+
+/// `∂T/∂q` at fixed velocities `(Ω, q̇)`, by automatic differentiation.
+#[must_use]
+pub fn coupled_kinetic_gradient<L: CoupledLagrangian<N> + ?Sized, const N: usize>(
+    model: &L,
+    q: &SVector<f64, N>,
+    omega: &Vector3<f64>,
+    qdot: &SVector<f64, N>,
+) -> SVector<f64, N> {
+    let qd = SVector::<Grad<N>, N>::from_fn(|i, _| grad_var::<N>(q[i], i));
+    let blocks = model.kinetic(&qd);
+    let (t, _, _) = kinetic_terms(
+        &blocks,
+        &omega.map(Grad::<N>::from),
+        &qdot.map(Grad::<N>::from),
+    );
+    grad_of(&t)
+}
+
+/// Solves `A x = b` by Gaussian elimination with partial pivoting (fixed size, on the stack).
+fn solve_small<const N: usize>(
+    mut a: SMatrix<f64, N, N>,
+    mut b: SVector<f64, N>,
+) -> Option<SVector<f64, N>> {
+    let scale = a.amax();
+    for col in 0..N {
+        let mut pivot = col;
+        for row in col + 1..N {
+            if a[(row, col)].abs() > a[(pivot, col)].abs() {
+                pivot = row;
+            }
+        }
+        let p = a[(pivot, col)];
+        if !(p.abs() > 1e-14 * scale) || !p.is_finite() {
+            return None;
+        }
+        if pivot != col {
+            a.swap_rows(pivot, col);
+            b.swap_rows(pivot, col);
+        }
+        for row in col + 1..N {
+            let factor = a[(row, col)] / p;
+            if factor != 0.0 {
+                for k in col..N {
+                    a[(row, k)] -= factor * a[(col, k)];
+                }
+                b[row] -= factor * b[col];
+            }
+        }
+    }
+    for col in (0..N).rev() {
+        let mut s = b[col];
+        for k in col + 1..N {
+            s -= a[(col, k)] * b[k];
+        }
+        b[col] = s / a[(col, col)];
+    }
+    Some(b)
+}
+
+/// Solves `[A B; C D] (x, y) = (r, s)` by eliminating `x` (3 unknowns) first.
+fn solve_blocks<const N: usize>(
+    a: &Matrix3<f64>,
+    b: &SMatrix<f64, 3, N>,
+    c: &SMatrix<f64, N, 3>,
+    d: &SMatrix<f64, N, N>,
+    r: &Vector3<f64>,
+    s: &SVector<f64, N>,
+) -> Option<(Vector3<f64>, SVector<f64, N>)> {
+    let a_inv = a.try_inverse()?;
+    let schur = d - c * (a_inv * b);
+    let y = solve_small(schur, s - c * (a_inv * r))?;
+    let x = a_inv * (r - b * y);
+    Some((x, y))
+}
+
+/// The velocities `(Ω, q̇)` of momenta `(Π, p)` at `q` (inverse Legendre transform).
+///
+/// # Errors
+/// [`Error::SingularMatrix`] (with `t = NaN`, `h = NaN`) when the kinetic energy is not
+/// positive definite at `q`.
+pub fn coupled_velocities<L: CoupledLagrangian<N> + ?Sized, const N: usize>(
+    model: &L,
+    q: &SVector<f64, N>,
+    momentum: &Vector3<f64>,
+    p: &SVector<f64, N>,
+) -> Result<(Vector3<f64>, SVector<f64, N>), Error> {
+    let blocks = model.kinetic(q);
+    solve_blocks(
+        &blocks.rotational,
+        &blocks.coupling,
+        &blocks.coupling.transpose(),
+        &blocks.internal,
+        momentum,
+        p,
+    )
+    .ok_or_else(|| Error::SingularMatrix {
+        t: f64::NAN,
+        h: f64::NAN,
+        state: q.iter().chain(momentum.iter()).chain(p.iter()).copied().collect(),
+    })
+}
+
+/// The state of velocities `(Ω, q̇)` at `(R, q)` (Legendre transform): `Π = JΩ + Bq̇`,
+/// `p = BᵀΩ + Mq̇`.
+#[must_use]
+pub fn coupled_state_from_velocities<L: CoupledLagrangian<N> + ?Sized, const N: usize>(
+    model: &L,
+    rotation: &Matrix3<f64>,
+    omega: &Vector3<f64>,
+    q: &SVector<f64, N>,
+    qdot: &SVector<f64, N>,
+) -> CoupledState<N> {
+    let blocks = model.kinetic(q);
+    let (_, momentum, p) = kinetic_terms(&blocks, omega, qdot);
+    CoupledState {
+        rotation: *rotation,
+        momentum,
+        q: *q,
+        p,
+    }
+}
+
+/// The energy `H = ½ (Ω·Π + q̇·p) + V(R, q)`.
+///
+/// # Errors
+/// As [`coupled_velocities`].
+pub fn coupled_energy<L: CoupledLagrangian<N> + ?Sized, const N: usize>(
+    model: &L,
+    state: &CoupledState<N>,
+) -> Result<f64, Error> {
+    let (omega, qdot) = coupled_velocities(model, &state.q, &state.momentum, &state.p)?;
+    Ok(0.5 * (omega.dot(&state.momentum) + qdot.dot(&state.p))
+        + model.potential(&state.rotation, &state.q))
+}
+
+/// The variational integrator of a [`CoupledLagrangian`] (see the module doc): order 2,
+/// symplectic, symmetric.
+///
+/// Implements [`Stepper<L>`] on [`CoupledState<N>`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct CoupledLgvi<const N: usize> {
+    /// Newton iterations allowed per step before [`Error::NoConvergence`].
+    pub max_iterations: usize,
+}
+
+impl<const N: usize> Default for CoupledLgvi<N> {
+    fn default() -> Self {
+        Self {
+            max_iterations: MAX_NEWTON_ITERATIONS,
+        }
+    }
+}
+
+/// The known parts of the discrete equations at step `k`.
+struct StepData<const N: usize> {
+    h: f64,
+    q0: SVector<f64, N>,
+    /// `Π_k + (h/2) M(R_k, q_k)`.
+    pi: Vector3<f64>,
+    /// `p_k − (h/2) V_q(R_k, q_k)`.
+    p: SVector<f64, N>,
+}
+
+type Newton<const N: usize> = (
+    Vector3<f64>,
+    SVector<f64, N>,
+    Matrix3<f64>,
+    SMatrix<f64, 3, N>,
+    SMatrix<f64, N, 3>,
+    SMatrix<f64, N, N>,
+);
+
+impl<const N: usize> StepData<N> {
+    /// Residuals `(E_R, E_q)` and the four Jacobian blocks at `(w, q₁)`.
+    fn newton<L: CoupledLagrangian<N> + ?Sized>(
+        &self,
+        model: &L,
+        w: &Vector3<f64>,
+        q1: &SVector<f64, N>,
+    ) -> Newton<N> {
+        let h = self.h;
+        let inv_h = 1.0 / h;
+        // Derivatives with respect to w: ε₁ perturbs the configuration argument of T (for
+        // T_q), ε₂ is w.
+        type W<const N: usize> = HyperDualVec<f64, Const<N>, Const<3>>;
+        let wd = Vector3::from_fn(|i, _| W::<N>::from_re(w[i]).derivative2(i));
+        let qbar = SVector::<W<N>, N>::from_fn(|i, _| {
+            W::<N>::from_re(0.5 * (self.q0[i] + q1[i])).derivative1(i)
+        });
+        let v = SVector::<W<N>, N>::from_fn(|i, _| W::<N>::from((q1[i] - self.q0[i]) * inv_h));
+        let blocks = model.kinetic(&qbar);
+        let (t, t_xi, t_v) = kinetic_terms(&blocks, &(wd * W::<N>::from(inv_h)), &v);
+        let e_r = self.pi.map(W::<N>::from) - a_right(&wd) * t_xi;
+        let t_q = t.eps1.unwrap_generic(Const::<N>, U1);
+        let residual_r = e_r.map(|x| x.re);
+        let residual_q = self.p + t_q * (0.5 * h) - t_v.map(|x| x.re);
+        let a = Matrix3::from_fn(|i, j| e_r[i].eps2.unwrap_generic(U1, Const::<3>)[j]);
+        let c = t.eps1eps2.unwrap_generic(Const::<N>, Const::<3>) * (0.5 * h)
+            - SMatrix::<f64, N, 3>::from_fn(|i, j| t_v[i].eps2.unwrap_generic(U1, Const::<3>)[j]);
+
+        // Derivatives with respect to q₁.
+        type Q<const N: usize> = HyperDualVec<f64, Const<N>, Const<N>>;
+        let q1d = SVector::<Q<N>, N>::from_fn(|i, _| Q::<N>::from_re(q1[i]).derivative2(i));
+        let qbar = SVector::<Q<N>, N>::from_fn(|i, _| {
+            (q1d[i] + Q::<N>::from(self.q0[i])) * Q::<N>::from(0.5)
+                + Q::<N>::from_re(0.0).derivative1(i)
+        });
+        let v = SVector::<Q<N>, N>::from_fn(|i, _| {
+            (q1d[i] - Q::<N>::from(self.q0[i])) * Q::<N>::from(inv_h)
+        });
+        let wq = w.map(Q::<N>::from);
+        let blocks = model.kinetic(&qbar);
+        let (t, t_xi, t_v) = kinetic_terms(&blocks, &(wq * Q::<N>::from(inv_h)), &v);
+        let e_r = self.pi.map(Q::<N>::from) - a_right(&wq) * t_xi;
+        let b = SMatrix::<f64, 3, N>::from_fn(|i, j| e_r[i].eps2.unwrap_generic(U1, Const::<N>)[j]);
+        let d = t.eps1eps2.unwrap_generic(Const::<N>, Const::<N>) * (0.5 * h)
+            - SMatrix::<f64, N, N>::from_fn(|i, j| t_v[i].eps2.unwrap_generic(U1, Const::<N>)[j]);
+        (residual_r, residual_q, a, b, c, d)
+    }
+}
+
+impl<const N: usize, L: CoupledLagrangian<N> + ?Sized> Stepper<L> for CoupledLgvi<N> {
+    type State = CoupledState<N>;
+
+    fn step(
+        &mut self,
+        model: &L,
+        t: f64,
+        state: &mut CoupledState<N>,
+        h: f64,
+    ) -> Result<(), Error> {
+        if !(h.is_finite() && h != 0.0) {
+            return check_step(h);
+        }
+        let failure = |iterations: usize, increment: f64, state: &CoupledState<N>| {
+            Error::NoConvergence {
+                t,
+                h,
+                iterations,
+                increment,
+                state: crate::state::State::to_vec(state),
+            }
+        };
+        let r0 = state.rotation;
+        let q0 = state.q;
+        let data = StepData {
+            h,
+            q0,
+            pi: state.momentum + coupled_torque(model, &r0, &q0) * (0.5 * h),
+            p: state.p - coupled_potential_gradient(model, &r0, &q0) * (0.5 * h),
+        };
+        let (omega, qdot) = coupled_velocities(model, &q0, &state.momentum, &state.p)
+            .map_err(|_| failure(0, f64::NAN, state))?;
+        let mut w = omega * h;
+        let mut q1 = q0 + qdot * h;
+        let mut previous = f64::INFINITY;
+        let mut converged = false;
+        let mut iterations = 0;
+        while iterations < self.max_iterations {
+            iterations += 1;
+            let (er, eq, a, b, c, d) = data.newton(model, &w, &q1);
+            let Some((dw, dq)) = solve_blocks(&a, &b, &c, &d, &(-er), &(-eq)) else {
+                return Err(Error::SingularMatrix {
+                    t,
+                    h,
+                    state: crate::state::State::to_vec(state),
+                });
+            };
+            let size = dw.amax().max(dq.amax());
+            let scale = w.amax().max(q1.amax());
+            if !size.is_finite() {
+                return Err(failure(iterations, size, state));
+            }
+            if size >= previous {
+                converged = previous <= 1e-10 * scale.max(f64::MIN_POSITIVE);
+                break;
+            }
+            w += dw;
+            q1 += dq;
+            if size <= 4.0 * f64::EPSILON * w.amax().max(q1.amax()) || size == 0.0 {
+                converged = true;
+                break;
+            }
+            previous = size;
+        }
+        if !converged {
+            return Err(failure(iterations, previous, state));
+        }
+        let r1 = r0 * cayley(&w).matrix();
+        // Momenta at k + 1: T's partial derivatives at the solution (T_q by AD).
+        let qbar =
+            SVector::<Grad<N>, N>::from_fn(|i, _| grad_var::<N>(0.5 * (q0[i] + q1[i]), i));
+        let v = ((q1 - q0) / h).map(Grad::<N>::from);
+        let blocks = model.kinetic(&qbar);
+        let (tk, t_xi, t_v) = kinetic_terms(&blocks, &(w / h).map(Grad::<N>::from), &v);
+        let t_xi = t_xi.map(|x| x.re);
+        let t_v = t_v.map(|x| x.re);
+        let t_q = grad_of(&tk);
+        state.momentum =
+            a_right(&w).transpose() * t_xi + coupled_torque(model, &r1, &q1) * (0.5 * h);
+        state.p = t_v + t_q * (0.5 * h) - coupled_potential_gradient(model, &r1, &q1) * (0.5 * h);
+        state.rotation = r1;
+        state.q = q1;
+        Ok(())
+    }
+}
+
+/// The continuous equations of a [`CoupledLagrangian`] on `SO(3) × ℝʸ`, `y = (Π, q, p)`,
+/// `Y = 3 + 2N` (see the module doc).
+#[derive(Debug, Clone, Copy)]
+pub struct CoupledVectorField<L, const N: usize, const Y: usize> {
+    model: L,
+}
+
+impl<L: CoupledLagrangian<N>, const N: usize, const Y: usize> CoupledVectorField<L, N, Y> {
+    /// Wraps a model.
+    ///
+    /// # Errors
+    /// [`Error::DimensionMismatch`] unless `Y = 3 + 2N`.
+    pub fn new(model: L) -> Result<Self, Error> {
+        check_coupled_dimension(N, Y)?;
+        Ok(Self { model })
+    }
+
+    /// The model.
+    pub fn model(&self) -> &L {
+        &self.model
+    }
+}
+
+impl<L: CoupledLagrangian<N>, const N: usize, const Y: usize> LieVectorField<Y>
+    for CoupledVectorField<L, N, Y>
+{
+    fn eval(
+        &self,
+        _t: f64,
+        rotation: &Matrix3<f64>,
+        y: &SVector<f64, Y>,
+    ) -> (Vector3<f64>, SVector<f64, Y>) {
+        let momentum = Vector3::new(y[0], y[1], y[2]);
+        let q = SVector::<f64, N>::from_fn(|i, _| y[3 + i]);
+        let p = SVector::<f64, N>::from_fn(|i, _| y[3 + N + i]);
+        let Ok((omega, qdot)) = coupled_velocities(&self.model, &q, &momentum, &p) else {
+            // A singular kinetic energy: the driver reports the non-finite state.
+            return (Vector3::repeat(f64::NAN), SVector::repeat(f64::NAN));
+        };
+        let dpi = momentum.cross(&omega) + coupled_torque(&self.model, rotation, &q);
+        let dp = coupled_kinetic_gradient(&self.model, &q, &omega, &qdot)
+            - coupled_potential_gradient(&self.model, rotation, &q);
+        let mut dy = SVector::<f64, Y>::zeros();
+        dy.fixed_rows_mut::<3>(0).copy_from(&dpi);
+        for i in 0..N {
+            dy[3 + i] = qdot[i];
+            dy[3 + N + i] = dp[i];
+        }
+        (omega, dy)
+    }
+}
