@@ -1,0 +1,88 @@
+//! Errors of the scenarios crate: each says what is wrong and where.
+
+/// A model could not be built or evaluated.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum ModelError {
+    /// A parameter is outside its physical domain.
+    #[error("parameter `{name}` = {value}: {reason}")]
+    InvalidParameter {
+        /// The parameter's name as the scene documents it.
+        name: String,
+        /// The value given.
+        value: f64,
+        /// What it must satisfy.
+        reason: &'static str,
+    },
+    /// The mass matrix is singular or too ill-conditioned: a coordinate singularity (gimbal
+    /// lock of Euler angles) or a degenerate model.
+    #[error(
+        "singular mass matrix at t = {t}: condition number {condition:e} exceeds {max_condition:e} \
+         (state {state:?}); the coordinates are at or near a singularity"
+    )]
+    SingularMassMatrix {
+        /// Time.
+        t: f64,
+        /// `λ_max/λ_min` (∞ when not positive definite).
+        condition: f64,
+        /// The bound it was compared with.
+        max_condition: f64,
+        /// The state `(q, q̇)`.
+        state: Vec<f64>,
+    },
+    /// The equations produced a non-finite value.
+    #[error("non-finite accelerations at t = {t} (state {state:?})")]
+    NonFinite {
+        /// Time.
+        t: f64,
+        /// The state `(q, q̇)`.
+        state: Vec<f64>,
+    },
+    /// A state vector of the wrong size.
+    #[error("state has {found} components, the model needs {expected}")]
+    Dimension {
+        /// Required size.
+        expected: usize,
+        /// Given size.
+        found: usize,
+    },
+}
+
+/// Checks that a parameter is finite and positive.
+pub(crate) fn positive(name: &str, value: f64) -> Result<f64, ModelError> {
+    if value.is_finite() && value > 0.0 {
+        Ok(value)
+    } else {
+        Err(ModelError::InvalidParameter {
+            name: name.to_string(),
+            value,
+            reason: "must be finite and positive",
+        })
+    }
+}
+
+/// Checks that a parameter is finite and not negative.
+pub(crate) fn non_negative(name: &str, value: f64) -> Result<f64, ModelError> {
+    if value.is_finite() && value >= 0.0 {
+        Ok(value)
+    } else {
+        Err(ModelError::InvalidParameter {
+            name: name.to_string(),
+            value,
+            reason: "must be finite and not negative",
+        })
+    }
+}
+
+/// Checks that a parameter is finite.
+pub(crate) fn finite(name: &str, value: f64) -> Result<f64, ModelError> {
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(ModelError::InvalidParameter {
+            name: name.to_string(),
+            value,
+            reason: "must be finite",
+        })
+    }
+}

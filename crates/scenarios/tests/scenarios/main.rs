@@ -1,0 +1,9 @@
+//! Integration tests of tumble-scenarios: one binary, one module per feature; each test is named
+//! after what it proves, against closed forms, conserved quantities or textbook equations.
+
+mod support;
+
+mod driven_hoop;
+mod free_hoop_euler;
+mod lagrangian_ad;
+mod spinning_hoop;
