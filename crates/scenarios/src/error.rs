@@ -86,3 +86,65 @@ pub(crate) fn finite(name: &str, value: f64) -> Result<f64, ModelError> {
         })
     }
 }
+
+/// What can go wrong when a scene is configured or run.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum SceneError {
+    /// No built-in scene has this name.
+    #[error("unknown scene `{name}`; built-in scenes: {known}")]
+    UnknownScene {
+        /// The name given.
+        name: String,
+        /// The built-in names.
+        known: String,
+    },
+    /// The scene has no parameter of this name.
+    #[error("scene `{scene}` has no parameter `{name}`; its parameters: {known}")]
+    UnknownParameter {
+        /// The scene.
+        scene: String,
+        /// The name given.
+        name: String,
+        /// The scene's parameter names.
+        known: String,
+    },
+    /// A parameter value outside its domain.
+    #[error("scene `{scene}`: parameter `{name}` = {value} {requirement}")]
+    InvalidParameter {
+        /// The scene.
+        scene: String,
+        /// The parameter.
+        name: String,
+        /// The value given.
+        value: f64,
+        /// What the domain requires.
+        requirement: &'static str,
+    },
+    /// The integrator does not exist or does not apply to this scene.
+    #[error("integrator `{name}` cannot run scene `{scene}`; applicable: {applicable}")]
+    UnsupportedIntegrator {
+        /// The scene.
+        scene: String,
+        /// The integrator asked for.
+        name: String,
+        /// The integrators that apply.
+        applicable: String,
+    },
+    /// A run option (step, tolerance, horizon, output cadence) is invalid.
+    #[error("{option} = {value}: {reason}")]
+    InvalidOption {
+        /// `dt`, `tol`, `t_end` or `every`.
+        option: &'static str,
+        /// The value given.
+        value: f64,
+        /// What it must satisfy.
+        reason: String,
+    },
+    /// The model failed (a singular mass matrix, a non-finite state).
+    #[error(transparent)]
+    Model(#[from] ModelError),
+    /// The integrator failed (non-convergence, non-finite state), with time and state.
+    #[error("integration failed: {0}")]
+    Integration(#[from] tumble_integrators::Error),
+}

@@ -19,7 +19,11 @@
 
 pub mod error;
 pub mod lagrangian;
+pub mod params;
+pub mod scene;
 pub mod scenes;
 
-pub use error::ModelError;
+pub use error::{ModelError, SceneError};
 pub use lagrangian::{EulerLagrange, Lagrangian, LagrangianOde};
+pub use params::{Domain, ParamSpec, Params};
+pub use scene::{Recorder, RunOptions, RunSummary, Scene, SceneInfo, StepControl};

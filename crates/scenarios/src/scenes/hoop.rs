@@ -36,8 +36,12 @@ use nalgebra::{RealField, SVector, Vector3};
 use tumble_integrators::{Action, Direction, Event, Ode};
 use tumble_kinematics::EulerConvention;
 
-use crate::error::{ModelError, finite, non_negative, positive};
+use crate::error::{ModelError, SceneError, finite, non_negative, positive};
 use crate::lagrangian::Lagrangian;
+use crate::params::{Domain, ParamSpec, Params};
+use crate::scene::{
+    Recorder, RunOptions, RunSummary, Scene, SceneInfo, VECTOR_INTEGRATORS, run_vector,
+};
 
 /// Parameters shared by the hoop scenes (SI units).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -112,6 +116,29 @@ pub fn hoop_lagrangian<D: RealField + Copy>(
     let t_bead = half * c::<D>(p.bead_mass) * v.norm_squared();
     let z = (conv.to_rotation(angles) * r).z;
     t_hoop + t_bead - c::<D>(p.bead_mass * p.gravity) * z
+}
+
+/// The angular momentum about the pivot in the lab, `R (I ω' + m r × v)`, for the hoop at ZYZ
+/// angles `angles` with rates `rates` and the bead at `alpha` with rate `alpha_dot`.
+#[must_use]
+pub fn hoop_angular_momentum(
+    p: &HoopParams,
+    angles: &Vector3<f64>,
+    rates: &Vector3<f64>,
+    alpha: f64,
+    alpha_dot: f64,
+) -> Vector3<f64> {
+    let conv = EulerConvention::ARTICLE;
+    let w = conv.omega_body(angles, rates);
+    let l_hoop = Vector3::new(
+        p.diameter_moment() * w.x,
+        p.diameter_moment() * w.y,
+        p.normal_moment() * w.z,
+    );
+    let (s, co) = alpha.sin_cos();
+    let r = Vector3::new(p.radius * co, p.radius * s, 0.0);
+    let v = w.cross(&r) + Vector3::new(-p.radius * s, p.radius * co, 0.0) * alpha_dot;
+    conv.to_rotation(angles) * (l_hoop + r.cross(&v) * p.bead_mass)
 }
 
 /// The tilt of the hoop: the angle between its plane and the vertical, `asin |n_z|` with `n`
@@ -269,22 +296,247 @@ impl FreeHoopEuler {
         Vector3::new(st * q[0].cos(), st * q[0].sin(), ct)
     }
 
-    /// The lab-frame angular momentum about the pivot, `R I ω' + m r × v` (space components).
+    /// The lab-frame angular momentum about the pivot (space components).
     #[must_use]
     pub fn angular_momentum(&self, q: &SVector<f64, 4>, qd: &SVector<f64, 4>) -> Vector3<f64> {
-        let conv = EulerConvention::ARTICLE;
-        let angles = Vector3::new(q[0], q[1], q[2]);
-        let rates = Vector3::new(qd[0], qd[1], qd[2]);
-        let w = conv.omega_body(&angles, &rates);
-        let p = &self.hoop;
-        let l_hoop = Vector3::new(
-            p.diameter_moment() * w.x,
-            p.diameter_moment() * w.y,
-            p.normal_moment() * w.z,
+        hoop_angular_momentum(
+            &self.hoop,
+            &Vector3::new(q[0], q[1], q[2]),
+            &Vector3::new(qd[0], qd[1], qd[2]),
+            q[3],
+            qd[3],
+        )
+    }
+}
+
+/// Parameters shared by the hoop scenes, with their defaults.
+const fn hoop_specs<const K: usize>(extra: [ParamSpec; K]) -> [ParamSpec; K] {
+    extra
+}
+
+const M_SPEC: ParamSpec = ParamSpec {
+    name: "M",
+    default: 1.0,
+    unit: "kg",
+    description: "hoop mass",
+    domain: Domain::Positive,
+};
+const A_SPEC: ParamSpec = ParamSpec {
+    name: "a",
+    default: 1.0,
+    unit: "m",
+    description: "hoop radius",
+    domain: Domain::Positive,
+};
+const G_SPEC: ParamSpec = ParamSpec {
+    name: "g",
+    default: 9.81,
+    unit: "m/s^2",
+    description: "gravitational acceleration (lab z up)",
+    domain: Domain::NonNegative,
+};
+const ALPHA_DOT0_SPEC: ParamSpec = ParamSpec {
+    name: "alpha_dot0",
+    default: 0.0,
+    unit: "rad/s",
+    description: "initial rate of the bead along the hoop",
+    domain: Domain::Finite,
+};
+
+fn hoop_params(params: &Params) -> Result<HoopParams, SceneError> {
+    Ok(HoopParams::new(
+        params.get("M")?,
+        params.get("m")?,
+        params.get("a")?,
+        params.get("g")?,
+    )?)
+}
+
+static DRIVEN_SPECS: [ParamSpec; 7] = hoop_specs([
+    M_SPEC,
+    ParamSpec {
+        name: "m",
+        default: 0.1,
+        unit: "kg",
+        description: "bead mass",
+        domain: Domain::NonNegative,
+    },
+    A_SPEC,
+    G_SPEC,
+    ParamSpec {
+        name: "omega",
+        default: 4.429_446_918_875_717,
+        unit: "rad/s",
+        description: "drive rate about lab z (default sqrt(2g/a): off-axis equilibrium at 60 deg)",
+        domain: Domain::Finite,
+    },
+    ParamSpec {
+        name: "alpha0",
+        default: 0.5,
+        unit: "rad",
+        description: "initial bead angle from the bottom of the hoop",
+        domain: Domain::Finite,
+    },
+    ALPHA_DOT0_SPEC,
+]);
+
+/// The `driven-hoop` scene.
+pub static DRIVEN_HOOP: SceneInfo = SceneInfo {
+    name: "driven-hoop",
+    summary: "bead on a vertical hoop spun at constant omega about the lab vertical",
+    coordinates: &["alpha"],
+    parameters: &DRIVEN_SPECS,
+    conserved: &["Jacobi integral (energy in the rotating frame)"],
+    oracle: "alpha'' = (omega^2 cos alpha - g/a) sin alpha; cos alpha* = g/(a omega^2); \
+             small oscillations Omega^2 = g/a - omega^2 (bottom), omega^2 - g^2/(a^2 omega^2) (alpha*)",
+    integrators: VECTOR_INTEGRATORS,
+    default_integrator: "gauss8",
+    default_step: 0.01,
+    default_t_end: 10.0,
+    diagnostics: &["energy", "energy_rel_err", "Lx", "Ly", "Lz", "tilt"],
+};
+
+/// Runs `driven-hoop`.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct DrivenHoopScene;
+
+impl Scene for DrivenHoopScene {
+    fn info(&self) -> &'static SceneInfo {
+        &DRIVEN_HOOP
+    }
+
+    fn simulate(
+        &self,
+        params: &Params,
+        options: &RunOptions,
+        recorder: &mut dyn Recorder,
+    ) -> Result<RunSummary, SceneError> {
+        let info = self.info();
+        let resolved = options.resolve(info)?;
+        let scene = DrivenHoop::new(hoop_params(params)?, params.get("omega")?)?;
+        let y0 = SVector::<f64, 2>::new(params.get("alpha0")?, params.get("alpha_dot0")?);
+        let el = crate::lagrangian::EulerLagrange::new(scene);
+        let columns = info.columns().len();
+        run_vector(
+            &scene,
+            y0,
+            &resolved,
+            columns,
+            3,
+            |t, y, out| {
+                let q = SVector::<f64, 1>::new(y[0]);
+                let qd = SVector::<f64, 1>::new(y[1]);
+                let angles = Vector3::new(scene.omega * t, FRAC_PI_2, 0.0);
+                let rates = Vector3::new(scene.omega, 0.0, 0.0);
+                let l = hoop_angular_momentum(&scene.hoop, &angles, &rates, y[0], y[1]);
+                out[0] = t;
+                out[1] = y[0];
+                out[2] = y[1];
+                out[3] = el.energy(t, &q, &qd);
+                out[5] = l.x;
+                out[6] = l.y;
+                out[7] = l.z;
+                out[8] = 0.0;
+            },
+            recorder,
+        )
+    }
+}
+
+static SPINNING_SPECS: [ParamSpec; 7] = hoop_specs([
+    M_SPEC,
+    ParamSpec {
+        name: "m",
+        default: 0.2,
+        unit: "kg",
+        description: "bead mass",
+        domain: Domain::NonNegative,
+    },
+    ParamSpec {
+        name: "a",
+        default: 0.4,
+        unit: "m",
+        description: "hoop radius",
+        domain: Domain::Positive,
+    },
+    G_SPEC,
+    ParamSpec {
+        name: "omega0",
+        default: 5.0,
+        unit: "rad/s",
+        description: "initial spin of the hoop about the lab vertical (phi_dot)",
+        domain: Domain::Finite,
+    },
+    ParamSpec {
+        name: "alpha0",
+        default: 3.1,
+        unit: "rad",
+        description: "initial bead angle from the bottom of the hoop (pi: the top)",
+        domain: Domain::Finite,
+    },
+    ALPHA_DOT0_SPEC,
+]);
+
+/// The `spinning-hoop` scene.
+pub static SPINNING_HOOP: SceneInfo = SceneInfo {
+    name: "spinning-hoop",
+    summary: "bead on a vertical hoop that turns freely about the lab vertical",
+    coordinates: &["phi", "alpha"],
+    parameters: &SPINNING_SPECS,
+    conserved: &["energy", "Lz = (M a^2/2 + m a^2 sin^2 alpha) phi_dot"],
+    oracle: "M=1, a=0.4, m=0.2, phi_dot=5 with the bead at the top gives phi_dot = 25/6 at 45 deg from the top",
+    integrators: VECTOR_INTEGRATORS,
+    default_integrator: "gauss8",
+    default_step: 0.01,
+    default_t_end: 10.0,
+    diagnostics: &["energy", "energy_rel_err", "Lx", "Ly", "Lz", "tilt"],
+};
+
+/// Runs `spinning-hoop`.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct SpinningHoopScene;
+
+impl Scene for SpinningHoopScene {
+    fn info(&self) -> &'static SceneInfo {
+        &SPINNING_HOOP
+    }
+
+    fn simulate(
+        &self,
+        params: &Params,
+        options: &RunOptions,
+        recorder: &mut dyn Recorder,
+    ) -> Result<RunSummary, SceneError> {
+        let info = self.info();
+        let resolved = options.resolve(info)?;
+        let scene = SpinningHoop {
+            hoop: hoop_params(params)?,
+        };
+        let y0 = SVector::<f64, 4>::new(
+            0.0,
+            params.get("alpha0")?,
+            params.get("omega0")?,
+            params.get("alpha_dot0")?,
         );
-        let (s, co) = q[3].sin_cos();
-        let r = Vector3::new(p.radius * co, p.radius * s, 0.0);
-        let v = w.cross(&r) + Vector3::new(-p.radius * s, p.radius * co, 0.0) * qd[3];
-        conv.to_rotation(&angles) * (l_hoop + r.cross(&v) * p.bead_mass)
+        let columns = info.columns().len();
+        run_vector(
+            &scene,
+            y0,
+            &resolved,
+            columns,
+            5,
+            |t, y, out| {
+                let angles = Vector3::new(y[0], FRAC_PI_2, 0.0);
+                let rates = Vector3::new(y[2], 0.0, 0.0);
+                let l = hoop_angular_momentum(&scene.hoop, &angles, &rates, y[1], y[3]);
+                out[..5].copy_from_slice(&[t, y[0], y[1], y[2], y[3]]);
+                out[5] = scene.energy(y[1], y[2], y[3]);
+                out[7] = l.x;
+                out[8] = l.y;
+                out[9] = l.z;
+                out[10] = 0.0;
+            },
+            recorder,
+        )
     }
 }

@@ -2,3 +2,31 @@
 //! oracle its tests use.
 
 pub mod hoop;
+
+use crate::error::SceneError;
+use crate::scene::Scene;
+
+/// Every built-in scene, in the order `tumble scenes` lists them.
+#[must_use]
+pub fn builtin() -> &'static [&'static dyn Scene] {
+    &[&hoop::DrivenHoopScene, &hoop::SpinningHoopScene]
+}
+
+/// The built-in scene called `name`.
+///
+/// # Errors
+/// [`SceneError::UnknownScene`] listing the built-in names.
+pub fn find(name: &str) -> Result<&'static dyn Scene, SceneError> {
+    builtin()
+        .iter()
+        .copied()
+        .find(|s| s.info().name == name)
+        .ok_or_else(|| SceneError::UnknownScene {
+            name: name.to_string(),
+            known: builtin()
+                .iter()
+                .map(|s| s.info().name)
+                .collect::<Vec<_>>()
+                .join(", "),
+        })
+}

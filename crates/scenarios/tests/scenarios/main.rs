@@ -6,4 +6,5 @@ mod support;
 mod driven_hoop;
 mod free_hoop_euler;
 mod lagrangian_ad;
+mod scene_runs;
 mod spinning_hoop;

@@ -1,0 +1,394 @@
+//! The scene abstraction: what a built-in scene documents, and how it is run.
+//!
+//! A [`Scene`] documents its coordinates, parameters (with defaults), conserved quantities and
+//! test oracle ([`SceneInfo`]), and runs itself with a chosen integrator, step (or tolerance)
+//! and horizon ([`RunOptions`]), handing rows of `t`, coordinates, rates and diagnostics to a
+//! [`Recorder`] every `every` steps. Diagnostics (energy and its relative error, angular
+//! momentum, hoop tilt) are computed on the fly; no trajectory is stored unless the recorder
+//! stores it.
+
+use nalgebra::SVector;
+use tumble_integrators::{
+    Driver, ExplicitRungeKutta, Flow, Observer, Ode, Tolerances, gauss2, gauss4, gauss6, gauss8,
+    gauss10, gauss12,
+};
+
+use crate::error::SceneError;
+use crate::params::{ParamSpec, Params};
+
+/// What a scene documents.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SceneInfo {
+    /// Name (`driven-hoop`).
+    pub name: &'static str,
+    /// One line: what it shows.
+    pub summary: &'static str,
+    /// Generalized coordinates in state order (CSV column names; rates add `_dot`).
+    pub coordinates: &'static [&'static str],
+    /// Parameters with defaults.
+    pub parameters: &'static [ParamSpec],
+    /// Conserved quantities.
+    pub conserved: &'static [&'static str],
+    /// The oracle its tests use.
+    pub oracle: &'static str,
+    /// Integrators that apply.
+    pub integrators: &'static [&'static str],
+    /// Default integrator.
+    pub default_integrator: &'static str,
+    /// Default fixed step (s), or tolerance for an adaptive default integrator.
+    pub default_step: f64,
+    /// Default horizon (s).
+    pub default_t_end: f64,
+    /// Diagnostic columns after the coordinates and rates.
+    pub diagnostics: &'static [&'static str],
+}
+
+impl SceneInfo {
+    /// The CSV header: `t`, coordinates, rates (`_dot`), diagnostics.
+    #[must_use]
+    pub fn columns(&self) -> Vec<String> {
+        std::iter::once("t".to_string())
+            .chain(self.coordinates.iter().map(|c| (*c).to_string()))
+            .chain(self.coordinates.iter().map(|c| format!("{c}_dot")))
+            .chain(self.diagnostics.iter().map(|d| (*d).to_string()))
+            .collect()
+    }
+
+    /// The default parameters.
+    #[must_use]
+    pub fn default_params(&self) -> Params {
+        Params::defaults(self.name, self.parameters)
+    }
+}
+
+/// Fixed step or error tolerance.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum StepControl {
+    /// Fixed step `h` (s).
+    Fixed(f64),
+    /// Adaptive step with `rtol = atol = tol`.
+    Tolerance(f64),
+}
+
+/// How to run a scene; `None` fields take the scene's defaults.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct RunOptions {
+    /// Integrator name from the registry.
+    pub integrator: Option<String>,
+    /// Step or tolerance.
+    pub step: Option<StepControl>,
+    /// Horizon (s).
+    pub t_end: Option<f64>,
+    /// Record every `every`-th step (≥ 1).
+    pub every: Option<u64>,
+}
+
+/// Run options with the defaults filled in and validated.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Resolved {
+    /// Integrator name.
+    pub integrator: String,
+    /// Step or tolerance.
+    pub step: StepControl,
+    /// Horizon (s).
+    pub t_end: f64,
+    /// Output cadence.
+    pub every: u64,
+}
+
+impl RunOptions {
+    /// Fills in `info`'s defaults and validates.
+    ///
+    /// # Errors
+    /// [`SceneError::UnsupportedIntegrator`] or [`SceneError::InvalidOption`] for a
+    /// non-positive, non-finite or larger-than-the-horizon step, a non-positive tolerance or
+    /// horizon, or `every = 0`.
+    pub fn resolve(&self, info: &SceneInfo) -> Result<Resolved, SceneError> {
+        let integrator = self
+            .integrator
+            .clone()
+            .unwrap_or_else(|| info.default_integrator.to_string());
+        if !info.integrators.contains(&integrator.as_str()) {
+            return Err(SceneError::UnsupportedIntegrator {
+                scene: info.name.to_string(),
+                name: integrator,
+                applicable: info.integrators.join(", "),
+            });
+        }
+        let adaptive = matches!(integrator.as_str(), "dp5" | "dop853");
+        let t_end = self.t_end.unwrap_or(info.default_t_end);
+        if !(t_end.is_finite() && t_end > 0.0) {
+            return Err(SceneError::InvalidOption {
+                option: "t_end",
+                value: t_end,
+                reason: "the horizon must be finite and positive".into(),
+            });
+        }
+        let step = match self.step {
+            Some(s) => s,
+            None if adaptive => StepControl::Tolerance(1e-10),
+            None => StepControl::Fixed(info.default_step),
+        };
+        match step {
+            StepControl::Fixed(h) => {
+                if !(h.is_finite() && h > 0.0) {
+                    return Err(SceneError::InvalidOption {
+                        option: "dt",
+                        value: h,
+                        reason: "the step must be finite and positive".into(),
+                    });
+                }
+                if h > t_end {
+                    return Err(SceneError::InvalidOption {
+                        option: "dt",
+                        value: h,
+                        reason: format!("the step is larger than the horizon t_end = {t_end}"),
+                    });
+                }
+                if adaptive {
+                    return Err(SceneError::InvalidOption {
+                        option: "dt",
+                        value: h,
+                        reason: format!("`{integrator}` is adaptive: give a tolerance instead"),
+                    });
+                }
+            }
+            StepControl::Tolerance(tol) => {
+                if !(tol.is_finite() && tol > 0.0) {
+                    return Err(SceneError::InvalidOption {
+                        option: "tol",
+                        value: tol,
+                        reason: "the tolerance must be finite and positive".into(),
+                    });
+                }
+                if !adaptive {
+                    return Err(SceneError::InvalidOption {
+                        option: "tol",
+                        value: tol,
+                        reason: format!("`{integrator}` has a fixed step: give a step instead"),
+                    });
+                }
+            }
+        }
+        let every = self.every.unwrap_or(1);
+        if every == 0 {
+            return Err(SceneError::InvalidOption {
+                option: "every",
+                value: 0.0,
+                reason: "must be at least 1".into(),
+            });
+        }
+        Ok(Resolved {
+            integrator,
+            step,
+            t_end,
+            every,
+        })
+    }
+}
+
+/// Receives the rows of a run: `t`, coordinates, rates, diagnostics.
+pub trait Recorder {
+    /// One row; return [`Flow::Stop`] to end the run early (e.g. after a write error).
+    fn row(&mut self, values: &[f64]) -> Flow;
+}
+
+/// A recorder that keeps nothing.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Discard;
+
+impl Recorder for Discard {
+    fn row(&mut self, _values: &[f64]) -> Flow {
+        Flow::Continue
+    }
+}
+
+/// A recorder that keeps every row in memory (for tests and small runs).
+#[derive(Debug, Clone, Default)]
+pub struct Rows(pub Vec<Vec<f64>>);
+
+impl Recorder for Rows {
+    fn row(&mut self, values: &[f64]) -> Flow {
+        self.0.push(values.to_vec());
+        Flow::Continue
+    }
+}
+
+/// Summary of a run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RunSummary {
+    /// Time reached.
+    pub t: f64,
+    /// Accepted steps.
+    pub steps: u64,
+    /// Right-hand-side evaluations (or steps of a method without one).
+    pub evaluations: u64,
+    /// Largest relative energy error `|E − E₀|/|E₀|` over every step.
+    pub max_energy_rel_err: f64,
+    /// Rows handed to the recorder.
+    pub rows: u64,
+}
+
+/// A built-in scene.
+pub trait Scene: Sync {
+    /// Its documentation.
+    fn info(&self) -> &'static SceneInfo;
+
+    /// Runs it.
+    ///
+    /// # Errors
+    /// Invalid parameters or options, model failures and integration failures, each a
+    /// [`SceneError`] saying what and where.
+    fn simulate(
+        &self,
+        params: &Params,
+        options: &RunOptions,
+        recorder: &mut dyn Recorder,
+    ) -> Result<RunSummary, SceneError>;
+}
+
+/// Integrators that run any first-order system `y' = f(t, y)`.
+pub const VECTOR_INTEGRATORS: &[&str] = &[
+    "rk4", "dp5", "dop853", "gauss2", "gauss4", "gauss6", "gauss8", "gauss10", "gauss12",
+];
+
+/// Observer that turns states into rows, tracks the energy error at every step and hands every
+/// `every`-th row to the recorder.
+struct RowObserver<'a, F, const S: usize> {
+    row: F,
+    buffer: Vec<f64>,
+    energy_column: usize,
+    energy0: Option<f64>,
+    max_rel: f64,
+    every: u64,
+    count: u64,
+    rows: u64,
+    recorder: &'a mut dyn Recorder,
+}
+
+impl<F: FnMut(f64, &SVector<f64, S>, &mut [f64]), const S: usize> Observer<SVector<f64, S>>
+    for RowObserver<'_, F, S>
+{
+    fn observe(&mut self, t: f64, state: &SVector<f64, S>) -> Flow {
+        (self.row)(t, state, &mut self.buffer);
+        let e = self.buffer[self.energy_column];
+        let e0 = *self.energy0.get_or_insert(e);
+        let rel = if e0 != 0.0 {
+            ((e - e0) / e0).abs()
+        } else {
+            (e - e0).abs()
+        };
+        self.max_rel = self.max_rel.max(rel);
+        if let Some(slot) = self.buffer.get_mut(self.energy_column + 1) {
+            *slot = rel;
+        }
+        let flow = if self.count % self.every == 0 {
+            self.rows += 1;
+            self.recorder.row(&self.buffer)
+        } else {
+            Flow::Continue
+        };
+        self.count += 1;
+        flow
+    }
+}
+
+/// Runs a first-order system with any of [`VECTOR_INTEGRATORS`].
+///
+/// `row(t, y, out)` writes a row (`t`, coordinates, rates, diagnostics; `out` has `columns`
+/// entries); column `energy_column` must hold the energy, and the one after it receives the
+/// relative energy error.
+pub(crate) fn run_vector<P, F, const S: usize>(
+    problem: &P,
+    y0: SVector<f64, S>,
+    resolved: &Resolved,
+    columns: usize,
+    energy_column: usize,
+    row: F,
+    recorder: &mut dyn Recorder,
+) -> Result<RunSummary, SceneError>
+where
+    P: Ode<SVector<f64, S>>,
+    F: FnMut(f64, &SVector<f64, S>, &mut [f64]),
+{
+    let counted = tumble_integrators::Counted::new(ByRef(problem));
+    let mut y = y0;
+    let mut observer = RowObserver {
+        row,
+        buffer: vec![0.0; columns],
+        energy_column,
+        energy0: None,
+        max_rel: 0.0,
+        every: resolved.every,
+        count: 0,
+        rows: 0,
+        recorder,
+    };
+    let driver = Driver::new(0.0, resolved.t_end)?;
+    let unsupported = |name: &str| SceneError::UnsupportedIntegrator {
+        scene: String::new(),
+        name: name.to_string(),
+        applicable: VECTOR_INTEGRATORS.join(", "),
+    };
+    let report = match resolved.step {
+        StepControl::Tolerance(tol) => {
+            let tolerances = Tolerances::new(tol, tol)?;
+            macro_rules! adaptive {
+                ($stepper:expr) => {{
+                    let mut stepper = $stepper;
+                    driver.run_adaptive(
+                        &mut stepper,
+                        &counted,
+                        &mut y,
+                        &tolerances,
+                        &mut [],
+                        &mut observer,
+                    )?
+                }};
+            }
+            match resolved.integrator.as_str() {
+                "dp5" => adaptive!(ExplicitRungeKutta::dp5().stepper(&y)),
+                "dop853" => adaptive!(ExplicitRungeKutta::dop853().stepper(&y)),
+                other => return Err(unsupported(other)),
+            }
+        }
+        StepControl::Fixed(h) => {
+            macro_rules! fixed {
+                ($stepper:expr) => {{
+                    let mut stepper = $stepper;
+                    driver.run_fixed(&mut stepper, &counted, &mut y, h, &mut observer)?
+                }};
+            }
+            match resolved.integrator.as_str() {
+                "rk4" => fixed!(ExplicitRungeKutta::rk4().stepper(&y)),
+                "gauss2" => fixed!(gauss2().stepper(&y)),
+                "gauss4" => fixed!(gauss4().stepper(&y)),
+                "gauss6" => fixed!(gauss6().stepper(&y)),
+                "gauss8" => fixed!(gauss8().stepper(&y)),
+                "gauss10" => fixed!(gauss10().stepper(&y)),
+                "gauss12" => fixed!(gauss12().stepper(&y)),
+                other => return Err(unsupported(other)),
+            }
+        }
+    };
+    Ok(RunSummary {
+        t: report.t,
+        steps: report.steps,
+        evaluations: counted.evaluations().rhs,
+        max_energy_rel_err: observer.max_rel,
+        rows: observer.rows,
+    })
+}
+
+/// A problem used through a reference (the integrators' traits are implemented for owned
+/// problems).
+struct ByRef<'a, P>(&'a P);
+
+impl<P: Ode<SVector<f64, S>>, const S: usize> Ode<SVector<f64, S>> for ByRef<'_, P> {
+    fn rhs(&self, t: f64, y: &SVector<f64, S>, dy: &mut SVector<f64, S>) {
+        self.0.rhs(t, y, dy);
+    }
+    fn jacobian(&self, t: f64, y: &SVector<f64, S>, jac: &mut [f64]) -> bool {
+        self.0.jacobian(t, y, jac)
+    }
+}

@@ -1,0 +1,149 @@
+//! Running built-in scenes: rows and columns, defaults, overrides, and bad options rejected
+//! before any work starts.
+
+use tumble_scenarios::scene::Rows;
+use tumble_scenarios::scenes::{builtin, find};
+use tumble_scenarios::{RunOptions, SceneError, StepControl};
+
+#[test]
+fn every_builtin_scene_runs_on_its_defaults_and_conserves_its_energy() {
+    for scene in builtin() {
+        let info = scene.info();
+        let params = info.default_params();
+        let mut rows = Rows::default();
+        let opts = RunOptions {
+            t_end: Some(2.0),
+            ..RunOptions::default()
+        };
+        let summary = scene.simulate(&params, &opts, &mut rows).unwrap();
+        let columns = info.columns();
+        assert_eq!(columns[0], "t");
+        assert!(rows.0.iter().all(|r| r.len() == columns.len()));
+        assert_eq!(rows.0.first().unwrap()[0], 0.0);
+        assert!((rows.0.last().unwrap()[0] - 2.0).abs() < 1e-12);
+        assert!(
+            summary.max_energy_rel_err < 1e-10,
+            "{}: {}",
+            info.name,
+            summary.max_energy_rel_err
+        );
+        let k = columns.iter().position(|c| c == "energy_rel_err").unwrap();
+        assert!(rows.0.iter().all(|r| r[k] <= summary.max_energy_rel_err));
+    }
+}
+
+#[test]
+fn every_n_steps_thins_the_rows() {
+    let scene = find("driven-hoop").unwrap();
+    let params = scene.info().default_params();
+    let mut rows = Rows::default();
+    let opts = RunOptions {
+        t_end: Some(1.0),
+        every: Some(10),
+        step: Some(StepControl::Fixed(0.01)),
+        ..RunOptions::default()
+    };
+    scene.simulate(&params, &opts, &mut rows).unwrap();
+    // Steps 0, 10, …, 100 (the observer also sees the final state once).
+    assert!((11..=12).contains(&rows.0.len()), "{} rows", rows.0.len());
+}
+
+#[test]
+fn bad_options_and_parameters_are_rejected_with_their_names() {
+    let scene = find("spinning-hoop").unwrap();
+    let mut params = scene.info().default_params();
+    let run =
+        |p: &tumble_scenarios::Params, o: RunOptions| scene.simulate(p, &o, &mut Rows::default());
+    for (opts, what) in [
+        (
+            RunOptions {
+                step: Some(StepControl::Fixed(0.0)),
+                ..Default::default()
+            },
+            "dt",
+        ),
+        (
+            RunOptions {
+                step: Some(StepControl::Fixed(-0.1)),
+                ..Default::default()
+            },
+            "dt",
+        ),
+        (
+            RunOptions {
+                step: Some(StepControl::Fixed(f64::NAN)),
+                ..Default::default()
+            },
+            "dt",
+        ),
+        (
+            RunOptions {
+                step: Some(StepControl::Fixed(100.0)),
+                t_end: Some(1.0),
+                ..Default::default()
+            },
+            "dt",
+        ),
+        (
+            RunOptions {
+                t_end: Some(-1.0),
+                ..Default::default()
+            },
+            "t_end",
+        ),
+        (
+            RunOptions {
+                every: Some(0),
+                ..Default::default()
+            },
+            "every",
+        ),
+        (
+            RunOptions {
+                integrator: Some("dop853".into()),
+                step: Some(StepControl::Fixed(0.1)),
+                ..Default::default()
+            },
+            "dt",
+        ),
+        (
+            RunOptions {
+                integrator: Some("rk4".into()),
+                step: Some(StepControl::Tolerance(1e-8)),
+                ..Default::default()
+            },
+            "tol",
+        ),
+    ] {
+        let err = run(&params, opts.clone()).unwrap_err();
+        assert!(err.to_string().starts_with(what), "{opts:?}: {err}");
+    }
+    assert!(matches!(
+        run(
+            &params,
+            RunOptions {
+                integrator: Some("nope".into()),
+                ..Default::default()
+            }
+        ),
+        Err(SceneError::UnsupportedIntegrator { .. })
+    ));
+    assert!(matches!(
+        params.set("mass", 1.0),
+        Err(SceneError::UnknownParameter { .. })
+    ));
+    assert!(matches!(
+        params.set("M", -1.0),
+        Err(SceneError::InvalidParameter { .. })
+    ));
+    assert!(matches!(
+        params.set("g", f64::NAN),
+        Err(SceneError::InvalidParameter { .. })
+    ));
+    params.set("omega0", 2.0).unwrap();
+    assert_eq!(params.get("omega0").unwrap(), 2.0);
+    assert!(matches!(
+        find("no-such-scene"),
+        Err(SceneError::UnknownScene { .. })
+    ));
+}
