@@ -282,7 +282,7 @@ impl<F: FnMut(f64, &SVector<f64, S>, &mut [f64]), const S: usize> Observer<SVect
         if let Some(slot) = self.buffer.get_mut(self.energy_column + 1) {
             *slot = rel;
         }
-        let flow = if self.count % self.every == 0 {
+        let flow = if self.count.is_multiple_of(self.every) {
             self.rows += 1;
             self.recorder.row(&self.buffer)
         } else {
