@@ -105,7 +105,7 @@ impl<'a, B: RigidBody + ?Sized> RigidBodyMonitor<'a, B> {
     }
 
     fn watch(&mut self, state: &RigidBodyState) {
-        let energy = self.problem.energy(state);
+        let energy = self.problem.hamiltonian(state);
         let l = state.spatial_momentum();
         let casimir = state.momentum.norm();
         let initial = *self.initial.get_or_insert(Initial {

@@ -148,27 +148,38 @@ impl FreeRigidBody {
         if asym > 1e-12 * j.amax() {
             return Err(invalid("inertia", asym, "the tensor must be symmetric"));
         }
-        let eig = SymmetricEigen::new((j + j.transpose()) * 0.5);
+        // A diagonal tensor is already in principal form: its axes are exact signed unit
+        // vectors (the iterative eigensolver would return them perturbed by ~1e-16, and every
+        // frame change of the exact flow and the splittings would carry that error).
+        let diagonal = (0..3).all(|r| (0..3).all(|c| r == c || j[(r, c)] == 0.0));
+        let (eigenvalues, eigenvectors) = if diagonal {
+            (j.diagonal(), Matrix3::identity())
+        } else {
+            let eig = SymmetricEigen::new((j + j.transpose()) * 0.5);
+            (eig.eigenvalues, eig.eigenvectors)
+        };
         let mut idx = [0usize, 1, 2];
-        idx.sort_by(|&a, &b| eig.eigenvalues[a].total_cmp(&eig.eigenvalues[b]));
+        idx.sort_by(|&a, &b| eigenvalues[a].total_cmp(&eigenvalues[b]));
         let moments = Vector3::new(
-            eig.eigenvalues[idx[0]],
-            eig.eigenvalues[idx[1]],
-            eig.eigenvalues[idx[2]],
+            eigenvalues[idx[0]],
+            eigenvalues[idx[1]],
+            eigenvalues[idx[2]],
         );
         let mut q = Matrix3::from_columns(&[
-            eig.eigenvectors.column(idx[0]).into_owned(),
-            eig.eigenvectors.column(idx[1]).into_owned(),
-            eig.eigenvectors.column(idx[2]).into_owned(),
+            eigenvectors.column(idx[0]).into_owned(),
+            eigenvectors.column(idx[1]).into_owned(),
+            eigenvectors.column(idx[2]).into_owned(),
         ]);
         if q.determinant() < 0.0 {
             q.set_column(2, &(-q.column(2)));
         }
         Self::check_moments(&moments)?;
-        Ok(FreeRigidBody {
-            moments,
-            axes: Rotation3::from_matrix(&q),
-        })
+        let axes = if diagonal {
+            Rotation3::from_matrix_unchecked(q)
+        } else {
+            Rotation3::from_matrix(&q)
+        };
+        Ok(FreeRigidBody { moments, axes })
     }
 
     /// From principal moments (any order) along the body axes x, y, z.
@@ -412,8 +423,12 @@ impl ExactFlow {
                 axis_body,
                 rate,
             } => {
-                let r = exp(&(precession * t)) * self.r0 * exp(&(axis_body * (rate * t)));
-                let m = r.inverse() * self.l_space;
+                let spin = exp(&(axis_body * (rate * t)));
+                let r = exp(&(precession * t)) * self.r0 * spin;
+                // m = Rᵀ L = exp(−t rate ê) m₀: written without Rᵀ, so that an orientation that
+                // is orthogonal only to round-off does not leak its defect into m (restarting the
+                // flow every step, as splittings do, would otherwise drift L linearly).
+                let m = spin.inverse() * self.m0;
                 (r, m)
             }
             Kind::General(g) => g.at(t),

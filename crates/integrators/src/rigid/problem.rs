@@ -57,8 +57,9 @@ pub trait RigidBody {
         false
     }
 
-    /// `H = ½ m·J⁻¹m + V(R)`.
-    fn energy(&self, state: &RigidBodyState) -> f64 {
+    /// The energy `H = ½ m·J⁻¹m + V(R)` of a state (named so as not to clash with
+    /// [`FreeRigidBody::energy`], the kinetic energy of a momentum).
+    fn hamiltonian(&self, state: &RigidBodyState) -> f64 {
         self.body().energy(&state.momentum) + self.potential(&state.rotation)
     }
 }

@@ -37,7 +37,12 @@
 //! # Exact free flow and kicks ([`ExactSplitting`], `split-exact2`)
 //!
 //! For `H = T + V`: `V_{h/2} ∘ φ^T_h ∘ V_{h/2}` with the exact free-rigid-body flow `φ^T`
-//! ([`crate::rigid::ExactFlow`]): order 2, symmetric, symplectic; exact for `V = 0`.
+//! ([`crate::rigid::ExactFlow`]): order 2, symmetric, symplectic; exact for `V = 0`. The closed
+//! form restarted every step with the same `h` multiplies the orientation by nearly the same
+//! rotation matrix every step, whose rounding would then accumulate coherently (linearly in the
+//! number of steps: 4e-13 after 10⁴ steps of the Simo–Wong top); one Newton–Schulz step
+//! `P ← P (3𝟙 − PᵀP)/2` after each flow, which moves `P` only by the size of its defect, keeps
+//! `‖PᵀP − 𝟙‖` at ~1e-16.
 //!
 //! # Exact stepper ([`ExactStepper`], `exact`)
 //!
@@ -235,7 +240,8 @@ impl<B: RigidBody + ?Sized> Stepper<B> for PrincipalAxisSplitting {
 }
 
 /// The exact free flow in the principal frame: a body with diagonal inertia (so the closed form
-/// adds no frame change of its own), rebuilt only when the moments change.
+/// adds no frame change of its own), rebuilt only when the moments change; the orientation is
+/// re-orthogonalized to round-off after each flow (see [`DiagonalFlow::advance`]).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 struct DiagonalFlow {
     body: Option<FreeRigidBody>,
@@ -269,7 +275,12 @@ impl DiagonalFlow {
             .flow(&Rotation3::from_matrix_unchecked(*p), mu)
             .map_err(|_| failure(p, mu))?;
         let (r, m) = flow.at(h);
-        *p = r.into_inner();
+        // One Newton–Schulz step towards the nearest rotation, P ← P (3𝟙 − PᵀP)/2: it moves P
+        // by the size of its defect (~1e-16) and keeps it there. Without it the defect grows
+        // linearly: restarted every step with the same h, the closed form multiplies by nearly
+        // the same rotation matrix every step and accumulates that matrix's rounding coherently.
+        let r = r.into_inner();
+        *p = r * (Matrix3::identity() * 3.0 - r.transpose() * r) * 0.5;
         *mu = m;
         Ok(())
     }

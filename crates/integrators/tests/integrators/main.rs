@@ -8,6 +8,8 @@ mod dense_output_and_events;
 mod driver_contract;
 mod error_control_rigid_body;
 mod exact_free_rigid_body;
+mod heavy_top_simo_wong;
+mod lgvi_long_run;
 mod long_run_brouwer;
 mod observed_order;
 mod quadratic_invariants;
