@@ -9,8 +9,8 @@
 
 use nalgebra::SVector;
 use tumble_integrators::{
-    Driver, ExplicitRungeKutta, Flow, Observer, Ode, Tolerances, gauss2, gauss4, gauss6, gauss8,
-    gauss10, gauss12,
+    Driver, Event, ExplicitRungeKutta, Flow, Observer, Ode, Tolerances, gauss2, gauss4, gauss6,
+    gauss8, gauss10, gauss12,
 };
 
 use crate::error::SceneError;
@@ -293,7 +293,8 @@ impl<F: FnMut(f64, &SVector<f64, S>, &mut [f64]), const S: usize> Observer<SVect
     }
 }
 
-/// Runs a first-order system with any of [`VECTOR_INTEGRATORS`].
+/// Runs a first-order system with any of [`VECTOR_INTEGRATORS`] (with `events`, only those with
+/// dense output: rk4, dp5, dop853; a terminal event ends the run there).
 ///
 /// `row(t, y, out)` writes a row (`t`, coordinates, rates, diagnostics; `out` has `columns`
 /// entries); column `energy_column` must hold the energy, and the one after it receives the
@@ -305,6 +306,7 @@ pub(crate) fn run_vector<P, F, const S: usize>(
     columns: usize,
     energy_column: usize,
     row: F,
+    events: &mut [Event<'_, SVector<f64, S>>],
     recorder: &mut dyn Recorder,
 ) -> Result<RunSummary, SceneError>
 where
@@ -341,7 +343,7 @@ where
                         &counted,
                         &mut y,
                         &tolerances,
-                        &mut [],
+                        &mut *events,
                         &mut observer,
                     )?
                 }};
@@ -359,7 +361,28 @@ where
                     driver.run_fixed(&mut stepper, &counted, &mut y, h, &mut observer)?
                 }};
             }
+            let with_events = !events.is_empty();
             match resolved.integrator.as_str() {
+                "rk4" if with_events => {
+                    let mut stepper = ExplicitRungeKutta::rk4().stepper(&y);
+                    driver.run_fixed_with_events(
+                        &mut stepper,
+                        &counted,
+                        &mut y,
+                        h,
+                        &mut *events,
+                        &mut observer,
+                    )?
+                }
+                _ if with_events => {
+                    return Err(SceneError::UnsupportedIntegrator {
+                        scene: String::new(),
+                        name: resolved.integrator.clone(),
+                        applicable:
+                            "rk4, dp5, dop853 (this run locates events, which needs dense output)"
+                                .into(),
+                    });
+                }
                 "rk4" => fixed!(ExplicitRungeKutta::rk4().stepper(&y)),
                 "gauss2" => fixed!(gauss2().stepper(&y)),
                 "gauss4" => fixed!(gauss4().stepper(&y)),

@@ -438,6 +438,7 @@ impl Scene for DrivenHoopScene {
                 out[7] = l.z;
                 out[8] = 0.0;
             },
+            &mut [],
             recorder,
         )
     }
@@ -536,6 +537,7 @@ impl Scene for SpinningHoopScene {
                 out[9] = l.z;
                 out[10] = 0.0;
             },
+            &mut [],
             recorder,
         )
     }

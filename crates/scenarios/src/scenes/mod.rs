@@ -1,6 +1,7 @@
 //! Built-in scenes: each documents its coordinates, parameters, conserved quantities and the
 //! oracle its tests use.
 
+pub mod coriolis;
 pub mod hoop;
 
 use crate::error::SceneError;
@@ -9,7 +10,11 @@ use crate::scene::Scene;
 /// Every built-in scene, in the order `tumble scenes` lists them.
 #[must_use]
 pub fn builtin() -> &'static [&'static dyn Scene] {
-    &[&hoop::DrivenHoopScene, &hoop::SpinningHoopScene]
+    &[
+        &hoop::DrivenHoopScene,
+        &hoop::SpinningHoopScene,
+        &coriolis::CoriolisDropScene,
+    ]
 }
 
 /// The built-in scene called `name`.

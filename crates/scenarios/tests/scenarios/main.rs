@@ -3,6 +3,7 @@
 
 mod support;
 
+mod coriolis_drop;
 mod driven_hoop;
 mod free_hoop_euler;
 mod lagrangian_ad;
