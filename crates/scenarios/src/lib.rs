@@ -21,6 +21,7 @@ pub mod error;
 pub mod lagrangian;
 pub mod params;
 pub mod scene;
+pub mod scene_file;
 pub mod scenes;
 
 pub use error::{ModelError, SceneError};

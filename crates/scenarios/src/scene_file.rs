@@ -1,0 +1,665 @@
+//! Scene files (TOML): a built-in model kind, its parameters and run defaults, validated with
+//! the line of every offending key.
+//!
+//! # Format
+//!
+//! ```toml
+//! # The model kind: one of the built-in scenes (`tumble scenes` lists them).
+//! scene = "spinning-hoop"
+//!
+//! # Parameters of that scene; any omitted one keeps its default. Values are numbers
+//! # (integers are taken as exact floats); `inf` and `nan` are rejected like any value outside
+//! # the parameter's domain.
+//! [parameters]
+//! M = 1.0
+//! a = 0.4
+//! m = 0.2
+//! omega0 = 5.0
+//! alpha0 = 3.1
+//!
+//! # Optional run defaults; the command line overrides each of them.
+//! [run]
+//! integrator = "gauss8"   # from the scene's applicable integrators
+//! dt = 0.001              # fixed step (s) ...
+//! # tol = 1e-10           # ... or the tolerance of an adaptive integrator, not both
+//! t_end = 5.0             # horizon (s)
+//! every = 10              # record every 10th step
+//! ```
+//!
+//! Top-level keys are `scene`, `parameters`, `run` and `body`; `[run]` takes `integrator`,
+//! `dt`, `tol`, `t_end` and `every`. Any other key is an error.
+//!
+//! # Rigid bodies: the `[body]` table
+//!
+//! The key `body` is reserved for the rigid-body scenes, which will take their inertia from a
+//! mesh file (relative to the scene file) or a primitive of `tumble-inertia`, e.g.
+//! `[body] mesh = "t-handle.obj", mass = 0.3` or `[body] primitive = "box", size = [..]`.
+//! None of the built-in scenes has a rigid body yet, so today a `[body]` table is an error
+//! that says so ([`SceneFileError::BodyNotApplicable`]); [`SceneFile`] will gain a `body`
+//! field when a scene takes one, without changing the rest of the format.
+//!
+//! # Validation
+//!
+//! Everything is checked when the file is read, before any work: TOML syntax and unknown keys
+//! (the TOML parser's message with its line and column), a missing or unknown `scene`, unknown
+//! parameters and values outside their domain (negative mass, `nan`, `inf`), values of the
+//! wrong type, and the `[run]` table as a whole (step or tolerance against the integrator,
+//! step against the horizon) through [`RunOptions::resolve`]. Each error is a
+//! [`SceneFileError`] carrying a [`Location`] (`file:line:column` of the offending key) and the
+//! key's name.
+
+use std::collections::BTreeMap;
+use std::fmt;
+use std::ops::Range;
+use std::path::{Path, PathBuf};
+
+use serde::Deserialize;
+use toml::Spanned;
+
+use crate::error::SceneError;
+use crate::params::Params;
+use crate::scene::{RunOptions, Scene, StepControl};
+use crate::scenes;
+
+/// Where in a scene file something is: its origin (a path, or a name given to text) and, when
+/// known, the 1-based line and column.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Location {
+    /// The file's path as given, or the name given to parsed text.
+    pub origin: String,
+    /// 1-based `(line, column)`; `None` when the parser could not place the error.
+    pub position: Option<(usize, usize)>,
+}
+
+impl Location {
+    /// The location of byte offset `offset` in `text`.
+    #[must_use]
+    pub fn at(origin: &str, text: &str, offset: usize) -> Self {
+        let offset = offset.min(text.len());
+        let before = &text[..offset];
+        let line = before.matches('\n').count() + 1;
+        let line_start = before.rfind('\n').map_or(0, |i| i + 1);
+        let column = before[line_start..].chars().count() + 1;
+        Location {
+            origin: origin.to_string(),
+            position: Some((line, column)),
+        }
+    }
+
+    /// The 1-based line, when known.
+    #[must_use]
+    pub fn line(&self) -> Option<usize> {
+        self.position.map(|(line, _)| line)
+    }
+}
+
+impl fmt::Display for Location {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.position {
+            Some((line, column)) => write!(f, "{}:{line}:{column}", self.origin),
+            None => f.write_str(&self.origin),
+        }
+    }
+}
+
+/// What can be wrong with a scene file. Every variant but [`SceneFileError::Read`] and
+/// [`SceneFileError::MissingScene`] carries the location of the offending key.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum SceneFileError {
+    /// The file could not be read.
+    #[error("{}: cannot read the scene file: {source}", path.display())]
+    Read {
+        /// The path given.
+        path: PathBuf,
+        /// The I/O error.
+        source: std::io::Error,
+    },
+    /// Not valid TOML, an unknown key, a duplicate key or a value of the wrong type: the TOML
+    /// parser's message, followed by the offending line.
+    #[error("{at}: {message}{excerpt}")]
+    Syntax {
+        /// Where.
+        at: Location,
+        /// The parser's message (it names the key).
+        message: String,
+        /// The offending line, indented, with a caret under the column (empty when unknown).
+        excerpt: String,
+    },
+    /// The file does not name its model.
+    #[error("{origin}: missing `scene = \"NAME\"` (the model kind); built-in scenes: {known}")]
+    MissingScene {
+        /// The file.
+        origin: String,
+        /// The built-in scene names.
+        known: String,
+    },
+    /// The scene, a parameter or a run option was rejected by the scene: unknown scene,
+    /// unknown parameter, value outside its domain, unsupported integrator, invalid step,
+    /// tolerance, horizon or cadence.
+    #[error("{at}: `{key}`: {source}")]
+    Scene {
+        /// Where the key is.
+        at: Location,
+        /// The dotted key (`scene`, `parameters.M`, `run.dt`).
+        key: String,
+        /// What the scene said.
+        source: SceneError,
+    },
+    /// A value that must be a number is something else.
+    #[error("{at}: `{key}` must be a number, found {found}")]
+    NotANumber {
+        /// Where the key is.
+        at: Location,
+        /// The dotted key.
+        key: String,
+        /// What was found, described (`a string "heavy"`, `an array`).
+        found: String,
+    },
+    /// `run.every` is not a whole number of at least 1.
+    #[error("{at}: `run.every` must be a whole number >= 1, found {found}")]
+    InvalidEvery {
+        /// Where the key is.
+        at: Location,
+        /// The value found, as written.
+        found: String,
+    },
+    /// `[run]` gives both `dt` and `tol`.
+    #[error(
+        "{at}: `run.dt` and `run.tol` are both given; a run has a fixed step or a tolerance, \
+         not both"
+    )]
+    StepAndTolerance {
+        /// Where the second of the two is.
+        at: Location,
+    },
+    /// A `[body]` table in a file whose scene has no rigid body.
+    #[error(
+        "{at}: `body`: scene `{scene}` has no rigid body; a [body] table (inertia from a mesh \
+         or a primitive) applies only to rigid-body scenes"
+    )]
+    BodyNotApplicable {
+        /// Where the table is.
+        at: Location,
+        /// The scene named by the file.
+        scene: String,
+    },
+}
+
+impl SceneFileError {
+    /// The location of the offending key, when the error has one.
+    #[must_use]
+    pub fn location(&self) -> Option<&Location> {
+        match self {
+            SceneFileError::Syntax { at, .. }
+            | SceneFileError::Scene { at, .. }
+            | SceneFileError::NotANumber { at, .. }
+            | SceneFileError::InvalidEvery { at, .. }
+            | SceneFileError::StepAndTolerance { at }
+            | SceneFileError::BodyNotApplicable { at, .. } => Some(at),
+            SceneFileError::Read { .. } | SceneFileError::MissingScene { .. } => None,
+        }
+    }
+}
+
+/// The file as TOML gives it, before validation.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawFile {
+    scene: Option<Spanned<String>>,
+    parameters: Option<BTreeMap<Spanned<String>, Spanned<toml::Value>>>,
+    run: Option<Spanned<RawRun>>,
+    body: Option<Spanned<toml::Table>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawRun {
+    integrator: Option<Spanned<String>>,
+    dt: Option<Spanned<toml::Value>>,
+    tol: Option<Spanned<toml::Value>>,
+    t_end: Option<Spanned<toml::Value>>,
+    every: Option<Spanned<toml::Value>>,
+}
+
+/// A validated scene file: the scene it names, its parameters (the scene's defaults with the
+/// file's values set) and its run defaults.
+#[derive(Clone)]
+pub struct SceneFile {
+    /// The file's path as given, or the name given to parsed text.
+    pub origin: String,
+    /// The built-in scene (model kind) the file names.
+    pub scene: &'static dyn Scene,
+    /// Parameter values: the scene's defaults, overridden by `[parameters]`.
+    pub params: Params,
+    /// Run defaults from `[run]`; `None` fields take the scene's defaults.
+    pub run: RunOptions,
+}
+
+impl fmt::Debug for SceneFile {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("SceneFile")
+            .field("origin", &self.origin)
+            .field("scene", &self.scene.info().name)
+            .field("params", &self.params)
+            .field("run", &self.run)
+            .finish()
+    }
+}
+
+/// Describes a TOML value for an error message.
+fn describe(value: &toml::Value) -> String {
+    match value {
+        toml::Value::String(s) => format!("a string {s:?}"),
+        toml::Value::Integer(i) => format!("the integer {i}"),
+        toml::Value::Float(x) => format!("the float {x}"),
+        toml::Value::Boolean(b) => format!("the boolean {b}"),
+        toml::Value::Datetime(d) => format!("the date-time {d}"),
+        toml::Value::Array(_) => "an array".to_string(),
+        toml::Value::Table(_) => "a table".to_string(),
+    }
+}
+
+/// A line of `text` with a caret under `column`, indented, or empty when unplaced.
+fn excerpt(text: &str, at: &Location) -> String {
+    let Some((line, column)) = at.position else {
+        return String::new();
+    };
+    let Some(source) = text.lines().nth(line - 1) else {
+        return String::new();
+    };
+    format!(
+        "\n    {line:>4} | {source}\n         | {}^",
+        " ".repeat(column.saturating_sub(1))
+    )
+}
+
+/// Parsing state: the text and its origin, to place spans.
+struct Source<'a> {
+    origin: &'a str,
+    text: &'a str,
+}
+
+impl Source<'_> {
+    fn at(&self, span: &Range<usize>) -> Location {
+        Location::at(self.origin, self.text, span.start)
+    }
+
+    /// A number: a float, or an integer exactly representable as one.
+    fn number(
+        &self,
+        key: &str,
+        key_span: &Range<usize>,
+        value: &Spanned<toml::Value>,
+    ) -> Result<f64, SceneFileError> {
+        match value.get_ref() {
+            toml::Value::Float(x) => Ok(*x),
+            toml::Value::Integer(i) if (*i as f64) as i64 == *i => Ok(*i as f64),
+            other => Err(SceneFileError::NotANumber {
+                at: self.at(key_span),
+                key: key.to_string(),
+                found: match other {
+                    toml::Value::Integer(i) => {
+                        format!("the integer {i}, which a float cannot hold exactly")
+                    }
+                    _ => describe(other),
+                },
+            }),
+        }
+    }
+}
+
+impl SceneFile {
+    /// Reads and validates the scene file at `path`.
+    ///
+    /// # Errors
+    /// [`SceneFileError::Read`] if the file cannot be read, otherwise as [`SceneFile::parse`].
+    pub fn load(path: &Path) -> Result<Self, SceneFileError> {
+        let text = std::fs::read_to_string(path).map_err(|source| SceneFileError::Read {
+            path: path.to_path_buf(),
+            source,
+        })?;
+        Self::parse(&text, &path.display().to_string())
+    }
+
+    /// Parses and validates scene-file text; `origin` names it in error messages (a path).
+    ///
+    /// # Errors
+    /// A [`SceneFileError`] naming the key and its line: TOML syntax, unknown keys, wrong
+    /// types, a missing or unknown scene, unknown parameters, values outside their domain,
+    /// invalid run options, a `[body]` table for a scene without a rigid body.
+    pub fn parse(text: &str, origin: &str) -> Result<Self, SceneFileError> {
+        let src = Source { origin, text };
+        let raw: RawFile = toml::from_str(text).map_err(|e| {
+            let at = match e.span() {
+                Some(span) => src.at(&span),
+                None => Location {
+                    origin: origin.to_string(),
+                    position: None,
+                },
+            };
+            SceneFileError::Syntax {
+                excerpt: excerpt(text, &at),
+                at,
+                message: e.message().trim_end().to_string(),
+            }
+        })?;
+
+        let known = || {
+            scenes::builtin()
+                .iter()
+                .map(|s| s.info().name)
+                .collect::<Vec<_>>()
+                .join(", ")
+        };
+        let Some(scene_name) = raw.scene else {
+            return Err(SceneFileError::MissingScene {
+                origin: origin.to_string(),
+                known: known(),
+            });
+        };
+        let scene = scenes::find(scene_name.get_ref()).map_err(|source| SceneFileError::Scene {
+            at: src.at(&scene_name.span()),
+            key: "scene".to_string(),
+            source,
+        })?;
+        let info = scene.info();
+
+        if let Some(body) = &raw.body {
+            return Err(SceneFileError::BodyNotApplicable {
+                at: src.at(&body.span()),
+                scene: info.name.to_string(),
+            });
+        }
+
+        // Parameters, in the order they appear in the file.
+        let mut params = info.default_params();
+        let mut entries: Vec<_> = raw.parameters.unwrap_or_default().into_iter().collect();
+        entries.sort_by_key(|(k, _)| k.span().start);
+        for (name, value) in &entries {
+            let key = format!("parameters.{}", name.get_ref());
+            let x = src.number(&key, &name.span(), value)?;
+            params
+                .set(name.get_ref(), x)
+                .map_err(|source| SceneFileError::Scene {
+                    at: src.at(&name.span()),
+                    key,
+                    source,
+                })?;
+        }
+
+        let run = match raw.run {
+            Some(run) => src.run_options(scene, run)?,
+            None => RunOptions::default(),
+        };
+
+        Ok(SceneFile {
+            origin: origin.to_string(),
+            scene,
+            params,
+            run,
+        })
+    }
+}
+
+impl Source<'_> {
+    /// Builds the `[run]` options and validates them as a whole against the scene.
+    fn run_options(
+        &self,
+        scene: &dyn Scene,
+        run: Spanned<RawRun>,
+    ) -> Result<RunOptions, SceneFileError> {
+        let table_span = run.span();
+        let run = run.into_inner();
+        let number = |key: &str, value: &Option<Spanned<toml::Value>>| {
+            value
+                .as_ref()
+                .map(|v| self.number(&format!("run.{key}"), &v.span(), v))
+                .transpose()
+        };
+        let dt = number("dt", &run.dt)?;
+        let tol = number("tol", &run.tol)?;
+        let t_end = number("t_end", &run.t_end)?;
+        let step = match (dt, tol) {
+            (Some(_), Some(_)) => {
+                let later = match (&run.dt, &run.tol) {
+                    (Some(a), Some(b)) => a.span().start.max(b.span().start),
+                    _ => table_span.start,
+                };
+                return Err(SceneFileError::StepAndTolerance {
+                    at: Location::at(self.origin, self.text, later),
+                });
+            }
+            (Some(h), None) => Some(StepControl::Fixed(h)),
+            (None, Some(tol)) => Some(StepControl::Tolerance(tol)),
+            (None, None) => None,
+        };
+        let every = match &run.every {
+            None => None,
+            Some(v) => match v.get_ref() {
+                toml::Value::Integer(n) if *n >= 1 => Some(n.unsigned_abs()),
+                other => {
+                    return Err(SceneFileError::InvalidEvery {
+                        at: self.at(&v.span()),
+                        found: describe(other),
+                    });
+                }
+            },
+        };
+        let options = RunOptions {
+            integrator: run.integrator.as_ref().map(|s| s.get_ref().clone()),
+            step,
+            t_end,
+            every,
+        };
+        // Validate the table as a whole and point at the key the scene complains about.
+        if let Err(source) = options.resolve(scene.info()) {
+            let (key, span) = match &source {
+                SceneError::UnsupportedIntegrator { .. } => {
+                    ("integrator", run.integrator.as_ref().map(Spanned::span))
+                }
+                SceneError::InvalidOption { option, .. } => {
+                    let span = match *option {
+                        "dt" => run.dt.as_ref().map(Spanned::span),
+                        "tol" => run.tol.as_ref().map(Spanned::span),
+                        "t_end" => run.t_end.as_ref().map(Spanned::span),
+                        "every" => run.every.as_ref().map(Spanned::span),
+                        _ => None,
+                    };
+                    (*option, span)
+                }
+                _ => ("run", None),
+            };
+            let key = if key == "run" {
+                key.to_string()
+            } else {
+                format!("run.{key}")
+            };
+            return Err(SceneFileError::Scene {
+                at: self.at(&span.unwrap_or(table_span)),
+                key,
+                source,
+            });
+        }
+        Ok(options)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parse(text: &str) -> Result<SceneFile, SceneFileError> {
+        SceneFile::parse(text, "test.toml")
+    }
+
+    fn line_of(e: &SceneFileError) -> usize {
+        e.location()
+            .and_then(Location::line)
+            .unwrap_or_else(|| panic!("no line in {e}"))
+    }
+
+    #[test]
+    fn a_complete_file_sets_parameters_and_run_options() {
+        let f = parse(
+            "scene = \"spinning-hoop\"\n\
+             [parameters]\n\
+             M = 1\n\
+             a = 0.4\n\
+             omega0 = 5.0\n\
+             [run]\n\
+             integrator = \"gauss6\"\n\
+             dt = 0.001\n\
+             t_end = 2\n\
+             every = 10\n",
+        )
+        .unwrap();
+        assert_eq!(f.scene.info().name, "spinning-hoop");
+        assert_eq!(f.params.get("M").unwrap(), 1.0);
+        assert_eq!(f.params.get("a").unwrap(), 0.4);
+        assert_eq!(f.params.get("omega0").unwrap(), 5.0);
+        // Untouched parameters keep the scene's defaults.
+        let defaults = f.scene.info().default_params();
+        assert_eq!(f.params.get("g").unwrap(), defaults.get("g").unwrap());
+        assert_eq!(
+            f.run,
+            RunOptions {
+                integrator: Some("gauss6".into()),
+                step: Some(StepControl::Fixed(0.001)),
+                t_end: Some(2.0),
+                every: Some(10),
+            }
+        );
+    }
+
+    #[test]
+    fn a_file_with_only_the_scene_takes_every_default() {
+        let f = parse("scene = \"driven-hoop\"\n").unwrap();
+        assert_eq!(f.params, f.scene.info().default_params());
+        assert_eq!(f.run, RunOptions::default());
+    }
+
+    #[test]
+    fn malformed_toml_names_its_line() {
+        let e = parse("scene = \"driven-hoop\"\n[parameters]\nM = = 1\n").unwrap_err();
+        assert!(matches!(e, SceneFileError::Syntax { .. }), "{e}");
+        assert_eq!(line_of(&e), 3, "{e}");
+        assert!(e.to_string().starts_with("test.toml:3:"), "{e}");
+        assert!(e.to_string().contains("M = = 1"), "excerpt missing: {e}");
+    }
+
+    #[test]
+    fn unknown_keys_are_errors_with_their_line() {
+        let e = parse("scene = \"driven-hoop\"\n\nspeed = 3\n").unwrap_err();
+        assert_eq!(line_of(&e), 3, "{e}");
+        assert!(e.to_string().contains("speed"), "{e}");
+        let e = parse("scene = \"driven-hoop\"\n[run]\nt_end = 1\nstep = 0.1\n").unwrap_err();
+        assert_eq!(line_of(&e), 4, "{e}");
+        assert!(e.to_string().contains("step"), "{e}");
+    }
+
+    #[test]
+    fn missing_and_unknown_scenes_are_errors() {
+        let e = parse("[parameters]\nM = 1\n").unwrap_err();
+        assert!(matches!(e, SceneFileError::MissingScene { .. }), "{e}");
+        assert!(e.to_string().contains("driven-hoop"), "{e}");
+        let e = parse("# a comment\nscene = \"warp-drive\"\n").unwrap_err();
+        assert!(
+            matches!(
+                e,
+                SceneFileError::Scene {
+                    source: SceneError::UnknownScene { .. },
+                    ..
+                }
+            ),
+            "{e}"
+        );
+        assert_eq!(line_of(&e), 2);
+        assert!(e.to_string().contains("warp-drive"), "{e}");
+    }
+
+    #[test]
+    fn unknown_parameters_name_the_key_the_line_and_the_known_ones() {
+        let e = parse("scene = \"driven-hoop\"\n[parameters]\nM = 1\nmass = 2\n").unwrap_err();
+        assert_eq!(line_of(&e), 4, "{e}");
+        let msg = e.to_string();
+        assert!(msg.contains("parameters.mass"), "{msg}");
+        assert!(msg.contains("omega"), "known names missing: {msg}");
+    }
+
+    #[test]
+    fn non_physical_and_non_finite_values_are_rejected() {
+        for (value, what) in [
+            ("-1.0", "positive"),
+            ("0", "positive"),
+            ("inf", "finite"),
+            ("nan", "finite"),
+            ("-inf", "finite"),
+        ] {
+            let text = format!("scene = \"driven-hoop\"\n[parameters]\n\nM = {value}\n");
+            let e = parse(&text).unwrap_err();
+            assert_eq!(line_of(&e), 4, "{e}");
+            assert!(e.to_string().contains("parameters.M"), "{e}");
+            assert!(e.to_string().contains(what), "{value}: {e}");
+        }
+        let e = parse("scene = \"driven-hoop\"\n[parameters]\nomega = nan\n").unwrap_err();
+        assert!(e.to_string().contains("must be finite"), "{e}");
+    }
+
+    #[test]
+    fn values_of_the_wrong_type_are_rejected() {
+        let e = parse("scene = \"driven-hoop\"\n[parameters]\nM = \"heavy\"\n").unwrap_err();
+        assert!(matches!(e, SceneFileError::NotANumber { .. }), "{e}");
+        assert_eq!(line_of(&e), 3);
+        assert!(e.to_string().contains("heavy"), "{e}");
+        let e = parse("scene = 3\n").unwrap_err();
+        assert!(matches!(e, SceneFileError::Syntax { .. }), "{e}");
+        assert_eq!(line_of(&e), 1);
+        let e = parse("scene = \"driven-hoop\"\n[parameters]\nM = 9007199254740993\n").unwrap_err();
+        assert!(matches!(e, SceneFileError::NotANumber { .. }), "{e}");
+    }
+
+    #[test]
+    fn run_options_are_validated_with_the_line_of_the_key() {
+        let cases = [
+            ("dt = 0.0", "run.dt"),
+            ("dt = -0.01", "run.dt"),
+            ("dt = nan", "run.dt"),
+            ("t_end = 1.0\ndt = 2.0", "run.dt"),
+            ("tol = 0.0\nintegrator = \"dp5\"", "run.tol"),
+            ("integrator = \"rk4\"\ntol = 1e-8", "run.tol"),
+            ("integrator = \"nope\"", "run.integrator"),
+            ("t_end = -1", "run.t_end"),
+            ("every = 0", "every"),
+            ("every = 2.5", "every"),
+            ("dt = 0.01\ntol = 1e-9", "run.dt"),
+            ("dt = \"small\"", "run.dt"),
+        ];
+        for (run, key) in cases {
+            let text = format!("scene = \"driven-hoop\"\n[run]\n{run}\n");
+            let e = parse(&text).unwrap_err();
+            let msg = e.to_string();
+            assert!(msg.contains(key), "{run:?}: {msg}");
+            let line = line_of(&e);
+            assert!((3..=4).contains(&line), "{run:?}: line {line}: {msg}");
+        }
+        // The key the scene complains about is the one located: `dt` on line 4.
+        let e = parse("scene = \"driven-hoop\"\n[run]\nt_end = 1.0\ndt = 2.0\n").unwrap_err();
+        assert_eq!(line_of(&e), 4, "{e}");
+    }
+
+    #[test]
+    fn a_body_table_is_reserved_for_rigid_body_scenes() {
+        let e = parse("scene = \"driven-hoop\"\n[body]\nmesh = \"t-handle.obj\"\n").unwrap_err();
+        assert!(matches!(e, SceneFileError::BodyNotApplicable { .. }), "{e}");
+        assert!(e.to_string().contains("driven-hoop"), "{e}");
+    }
+
+    #[test]
+    fn locations_count_lines_and_characters() {
+        let text = "a\nβγ = 1\n";
+        let at = Location::at("f", text, text.find('=').unwrap());
+        assert_eq!(at.position, Some((2, 4)));
+        assert_eq!(at.to_string(), "f:2:4");
+    }
+}
