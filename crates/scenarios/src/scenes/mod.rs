@@ -3,6 +3,7 @@
 
 pub mod coriolis;
 pub mod hoop;
+pub mod top;
 
 use crate::error::SceneError;
 use crate::scene::Scene;

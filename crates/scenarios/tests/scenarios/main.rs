@@ -6,6 +6,7 @@ mod support;
 mod coriolis_drop;
 mod driven_hoop;
 mod free_hoop_euler;
+mod heavy_top_euler;
 mod lagrangian_ad;
 mod scene_runs;
 mod spinning_hoop;
