@@ -53,7 +53,14 @@ pub struct Initial {
 }
 
 impl Deviations {
-    fn record(&mut self, initial: &Initial, energy: f64, l: &Vector3<f64>, casimir: f64, defect: f64) {
+    fn record(
+        &mut self,
+        initial: &Initial,
+        energy: f64,
+        l: &Vector3<f64>,
+        casimir: f64,
+        defect: f64,
+    ) {
         let de = (energy - initial.energy).abs();
         self.energy = self.energy.max(de);
         self.energy_relative = if initial.energy == 0.0 {

@@ -68,11 +68,7 @@ pub use diagnostics::{CoupledMonitor, Deviations, Initial, RigidBodyMonitor};
 pub use dmv::Dmv;
 pub use exact::{ExactFlow, FreeRigidBody};
 pub use lgvi::Lgvi;
-pub use lie_rk::{
-    CROUCH_GROSSMAN3, CrouchGrossman, LieRkTableau, RKMK4, Rkmk, cg3, rkmk4,
-};
+pub use lie_rk::{CROUCH_GROSSMAN3, CrouchGrossman, LieRkTableau, RKMK4, Rkmk, cg3, rkmk4};
 pub use problem::{EulerEquations, HeavyTop, LieVectorField, RigidBody};
-pub use splitting::{
-    ExactSplitting, ExactStepper, PrincipalAxisSplitting, split4, split6, split8,
-};
+pub use splitting::{ExactSplitting, ExactStepper, PrincipalAxisSplitting, split4, split6, split8};
 pub use state::{CoupledState, GroupState, RigidBodyState};

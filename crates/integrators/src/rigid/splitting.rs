@@ -265,8 +265,8 @@ impl DiagonalFlow {
         let body = match self.body {
             Some(b) if b.principal_moments() == *moments => b,
             _ => {
-                let b = FreeRigidBody::from_principal_moments(*moments)
-                    .map_err(|_| failure(p, mu))?;
+                let b =
+                    FreeRigidBody::from_principal_moments(*moments).map_err(|_| failure(p, mu))?;
                 self.body = Some(b);
                 b
             }

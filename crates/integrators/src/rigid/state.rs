@@ -60,7 +60,10 @@ impl RigidBodyState {
 
 impl State for RigidBodyState {
     fn is_finite(&self) -> bool {
-        self.rotation.iter().chain(self.momentum.iter()).all(|x| x.is_finite())
+        self.rotation
+            .iter()
+            .chain(self.momentum.iter())
+            .all(|x| x.is_finite())
     }
     fn to_vec(&self) -> Vec<f64> {
         self.rotation
@@ -117,10 +120,17 @@ impl From<GroupState<3>> for RigidBodyState {
 
 impl<const N: usize> State for GroupState<N> {
     fn is_finite(&self) -> bool {
-        self.rotation.iter().chain(self.vector.iter()).all(|x| x.is_finite())
+        self.rotation
+            .iter()
+            .chain(self.vector.iter())
+            .all(|x| x.is_finite())
     }
     fn to_vec(&self) -> Vec<f64> {
-        self.rotation.iter().chain(self.vector.iter()).copied().collect()
+        self.rotation
+            .iter()
+            .chain(self.vector.iter())
+            .copied()
+            .collect()
     }
 }
 

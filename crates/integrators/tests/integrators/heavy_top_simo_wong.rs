@@ -9,11 +9,11 @@
 //! sub-flow of the splittings conserves both). `rkmk4` (not symplectic) is run alongside for
 //! comparison: its error is larger and not structured.
 
+use tumble_integrators::rigid::EulerEquations;
 use tumble_integrators::rigid::{
     ExactSplitting, GroupState, HeavyTop, Lgvi, PrincipalAxisSplitting, RigidBody,
     RigidBodyMonitor, RigidBodyState, rkmk4,
 };
-use tumble_integrators::rigid::EulerEquations;
 use tumble_integrators::{Driver, Flow, Observer, Stepper};
 
 const T_END: f64 = 10.0;
@@ -53,7 +53,13 @@ struct Outcome {
     defect: f64,
 }
 
-fn run<St: Stepper<P>, P: ?Sized>(mut st: St, problem: &P, s0: St::State, top: &HeavyTop, h: f64) -> Outcome
+fn run<St: Stepper<P>, P: ?Sized>(
+    mut st: St,
+    problem: &P,
+    s0: St::State,
+    top: &HeavyTop,
+    h: f64,
+) -> Outcome
 where
     for<'a> Watch<'a>: Observer<St::State>,
 {
@@ -87,7 +93,10 @@ fn simo_wong_initial_energy_is_1269_975() {
     let top = HeavyTop::simo_wong();
     let h = top.hamiltonian(&HeavyTop::simo_wong_initial());
     let expected = 1250.0 + 20.0 * 0.05f64.cos();
-    assert!((h - expected).abs() < 4.0 * f64::EPSILON * expected, "{h} vs {expected}");
+    assert!(
+        (h - expected).abs() < 4.0 * f64::EPSILON * expected,
+        "{h} vs {expected}"
+    );
     assert!((h - 1269.975).abs() < 1e-3, "{h}");
 }
 
@@ -105,11 +114,23 @@ fn simo_wong_heavy_top_energy_stays_bounded_for_lgvi_and_the_splittings() {
     for h in [0.001, 0.003, 0.009] {
         let results = [
             ("lgvi", run(Lgvi::default(), &top, s0, &top, h)),
-            ("split2", run(PrincipalAxisSplitting::new(), &top, s0, &top, h)),
-            ("split-exact2", run(ExactSplitting::new(), &top, s0, &top, h)),
+            (
+                "split2",
+                run(PrincipalAxisSplitting::new(), &top, s0, &top, h),
+            ),
+            (
+                "split-exact2",
+                run(ExactSplitting::new(), &top, s0, &top, h),
+            ),
             (
                 "rkmk4",
-                run(rkmk4::<3>(), &EulerEquations(top), GroupState::from(s0), &top, h),
+                run(
+                    rkmk4::<3>(),
+                    &EulerEquations(top),
+                    GroupState::from(s0),
+                    &top,
+                    h,
+                ),
             ),
         ];
         for (name, o) in &results {
@@ -117,7 +138,10 @@ fn simo_wong_heavy_top_energy_stays_bounded_for_lgvi_and_the_splittings() {
                 "h = {h}: {name:>12}: max |ΔH|/H = {:.2e} (halves {:.2e}, {:.2e}), |ΔL·e₃|/|L| = {:.1e}, |Δm₃|/|m| = {:.1e}, ‖RᵀR − 𝟙‖ = {:.1e}",
                 o.energy, o.halves[0], o.halves[1], o.vertical, o.spin, o.defect
             ));
-            check(o.defect < 1e-13, format!("{name} h = {h}: defect {:e}", o.defect));
+            check(
+                o.defect < 1e-13,
+                format!("{name} h = {h}: defect {:e}", o.defect),
+            );
             if *name == "rkmk4" {
                 continue;
             }
@@ -125,11 +149,20 @@ fn simo_wong_heavy_top_energy_stays_bounded_for_lgvi_and_the_splittings() {
             // more than 10 % (a drift would double it), and it is small.
             check(
                 o.halves[1] <= 1.1 * o.halves[0] && o.energy < 0.02,
-                format!("{name} h = {h}: energy {:e}, halves {:?}", o.energy, o.halves),
+                format!(
+                    "{name} h = {h}: energy {:e}, halves {:?}",
+                    o.energy, o.halves
+                ),
             );
-            check(o.vertical < 1e-13, format!("{name} h = {h}: L·e₃ drift {:e}", o.vertical));
+            check(
+                o.vertical < 1e-13,
+                format!("{name} h = {h}: L·e₃ drift {:e}", o.vertical),
+            );
             if *name != "split2" {
-                check(o.spin < 1e-13, format!("{name} h = {h}: m₃ drift {:e}", o.spin));
+                check(
+                    o.spin < 1e-13,
+                    format!("{name} h = {h}: m₃ drift {:e}", o.spin),
+                );
             }
         }
     }

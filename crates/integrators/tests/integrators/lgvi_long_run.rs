@@ -116,16 +116,32 @@ fn lgvi_keeps_a_free_body_on_so3_and_its_invariants_to_roundoff_over_a_million_s
     eprintln!("{}", describe("lgvi, free body", &r, &s0));
     let d = &r.deviations;
     let l0 = s0.spatial_momentum().norm();
-    assert!(d.orthogonality < roundoff(), "orthogonality defect {:e}", d.orthogonality);
+    assert!(
+        d.orthogonality < roundoff(),
+        "orthogonality defect {:e}",
+        d.orthogonality
+    );
     assert!(
         d.spatial_momentum / l0 < roundoff(),
         "spatial angular momentum drift {:e}",
         d.spatial_momentum / l0
     );
-    assert!(d.casimir / s0.momentum.norm() < roundoff(), "Casimir drift {:e}", d.casimir);
-    assert!(d.energy_relative < roundoff(), "energy error {:e}", d.energy_relative);
+    assert!(
+        d.casimir / s0.momentum.norm() < roundoff(),
+        "Casimir drift {:e}",
+        d.casimir
+    );
+    assert!(
+        d.energy_relative < roundoff(),
+        "energy error {:e}",
+        d.energy_relative
+    );
     // The energy's round-off grows like √n (Brouwer), not like n (a drift).
-    assert!((0.3..=0.7).contains(&r.drift), "round-off growth exponent {}", r.drift);
+    assert!(
+        (0.3..=0.7).contains(&r.drift),
+        "round-off growth exponent {}",
+        r.drift
+    );
 }
 
 #[test]
@@ -136,12 +152,20 @@ fn lgvi_energy_error_of_a_heavy_top_stays_bounded_over_a_million_steps() {
     eprintln!("{}", describe("lgvi, asymmetric heavy top", &r, &s0));
     let d = &r.deviations;
     let l0 = s0.spatial_momentum().norm();
-    assert!(d.orthogonality < roundoff(), "orthogonality defect {:e}", d.orthogonality);
+    assert!(
+        d.orthogonality < roundoff(),
+        "orthogonality defect {:e}",
+        d.orthogonality
+    );
     assert!(
         d.vertical_momentum / l0 < roundoff(),
         "vertical angular momentum drift {:e}",
         d.vertical_momentum / l0
     );
-    assert!(d.energy_relative < 1e-2, "energy error {:e}", d.energy_relative);
+    assert!(
+        d.energy_relative < 1e-2,
+        "energy error {:e}",
+        d.energy_relative
+    );
     assert!(r.drift.abs() < 0.05, "energy drift exponent {}", r.drift);
 }

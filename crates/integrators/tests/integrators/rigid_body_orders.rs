@@ -101,10 +101,7 @@ fn dmv_is_order_two_in_momentum_and_in_rotation() {
     let body = asymmetric_body();
     let s0 = initial_state();
     let exact = exact_state(&body, &s0, T_FREE);
-    for (part, pick) in [
-        ("momentum", 0usize),
-        ("rotation", 1usize),
-    ] {
+    for (part, pick) in [("momentum", 0usize), ("rotation", 1usize)] {
         let plan: Plan = ("dmv", 2.0, 10.0, 6, 2.0);
         let fit = study(&plan, T_FREE, |h| {
             let s = solve_free("dmv", &body, &s0, T_FREE, h)?;
@@ -129,7 +126,15 @@ fn dmv_and_the_torque_free_lgvi_are_the_same_map() {
     let body = asymmetric_body();
     let s0 = initial_state();
     let a = run(&mut Dmv::new(), &body, s0, 100.0, 0.05, &mut NoObserver).unwrap();
-    let b = run(&mut Lgvi::default(), &body, s0, 100.0, 0.05, &mut NoObserver).unwrap();
+    let b = run(
+        &mut Lgvi::default(),
+        &body,
+        s0,
+        100.0,
+        0.05,
+        &mut NoObserver,
+    )
+    .unwrap();
     let d = state_error(&a, &b, s0.momentum.norm());
     eprintln!("dmv vs lgvi after 2000 steps: {d:.2e}");
     assert!(d < 1e-11, "{d:e}");
@@ -197,12 +202,15 @@ fn coupled_methods_reach_their_order_on_the_bead_on_a_hoop() {
     let reference = hoop_reference(&model, &s0, t_end, 1e-3);
     assert!(coupled_error(&reference, &hoop_reference(&model, &s0, t_end, 2e-3)) < 1e-13);
     let fit = study(&("coupled-lgvi", 2.0, 40.0, 6, 2.0), t_end, |h| {
-        Ok(coupled_error(&hoop_lgvi(&model, &s0, t_end, h)?, &reference))
+        Ok(coupled_error(
+            &hoop_lgvi(&model, &s0, t_end, h)?,
+            &reference,
+        ))
     });
     fit.check(2.0, 0.3).unwrap();
     let field = CoupledVectorField::<_, 1, 5>::new(model).unwrap();
     let g0 = s0.to_group::<5>().unwrap();
-    let fit = study(&("rkmk4 (coupled)", 4.0, 80.0, 6, 2.0), t_end, |h| {
+    let fit = study(&("rkmk4 (coupled)", 4.0, 160.0, 6, 2.0), t_end, |h| {
         let g: GroupState<5> = run(&mut rkmk4::<5>(), &field, g0, t_end, h, &mut NoObserver)?;
         Ok(coupled_error(&CoupledState::from_group(&g)?, &reference))
     });

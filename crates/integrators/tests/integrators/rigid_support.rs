@@ -19,11 +19,6 @@ pub fn asymmetric_body() -> FreeRigidBody {
     FreeRigidBody::from_inertia(&j).unwrap()
 }
 
-/// The diagonal body I = (1, 2, 3).
-pub fn diagonal_body() -> FreeRigidBody {
-    FreeRigidBody::from_principal_moments(Vector3::new(1.0, 2.0, 3.0)).unwrap()
-}
-
 /// A generic initial state (not near a separatrix or an axis).
 pub fn initial_state() -> RigidBodyState {
     RigidBodyState::new(
@@ -105,18 +100,6 @@ pub fn run<P: ?Sized, St: Stepper<P>, O: Observer<St::State>>(
     Ok(s)
 }
 
-/// Every rigid-body method that applies to any [`RigidBody`], by registry name.
-pub const BODY_METHODS: [&str; 8] = [
-    "lgvi",
-    "rkmk4",
-    "cg3",
-    "split2",
-    "split4",
-    "split6",
-    "split8",
-    "split-exact2",
-];
-
 /// Final state of the method called `name` on a [`RigidBody`].
 pub fn solve_body<B: RigidBody>(
     name: &str,
@@ -129,7 +112,14 @@ pub fn solve_body<B: RigidBody>(
     let obs = &mut NoObserver;
     match name {
         "lgvi" => run(&mut Lgvi::default(), problem, s0, t_end, h, obs),
-        "split2" => run(&mut PrincipalAxisSplitting::new(), problem, s0, t_end, h, obs),
+        "split2" => run(
+            &mut PrincipalAxisSplitting::new(),
+            problem,
+            s0,
+            t_end,
+            h,
+            obs,
+        ),
         "split4" => run(&mut split4(), problem, s0, t_end, h, obs),
         "split6" => run(&mut split6(), problem, s0, t_end, h, obs),
         "split8" => run(&mut split8(), problem, s0, t_end, h, obs),
@@ -148,7 +138,7 @@ pub fn solve_body<B: RigidBody>(
     }
 }
 
-/// Final state of `name` on the free body: [`BODY_METHODS`] plus `dmv` and `exact`.
+/// Final state of `name` on the free body: the methods of [`solve_body`] plus `dmv` and `exact`.
 pub fn solve_free(
     name: &str,
     body: &FreeRigidBody,
@@ -158,7 +148,14 @@ pub fn solve_free(
 ) -> Result<RigidBodyState, Error> {
     match name {
         "dmv" => run(&mut Dmv::default(), body, *s0, t_end, h, &mut NoObserver),
-        "exact" => run(&mut ExactStepper::new(), body, *s0, t_end, h, &mut NoObserver),
+        "exact" => run(
+            &mut ExactStepper::new(),
+            body,
+            *s0,
+            t_end,
+            h,
+            &mut NoObserver,
+        ),
         other => solve_body(other, body, s0, t_end, h),
     }
 }
@@ -278,5 +275,12 @@ pub fn hoop_lgvi(
     t_end: f64,
     h: f64,
 ) -> Result<CoupledState<1>, Error> {
-    run(&mut CoupledLgvi::<1>::default(), model, *s0, t_end, h, &mut NoObserver)
+    run(
+        &mut CoupledLgvi::<1>::default(),
+        model,
+        *s0,
+        t_end,
+        h,
+        &mut NoObserver,
+    )
 }
