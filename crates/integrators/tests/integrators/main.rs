@@ -16,6 +16,7 @@ mod long_run_brouwer;
 mod observed_order;
 mod quadratic_invariants;
 mod registry_lists_every_method;
+mod rigid_body_hard_cases;
 mod rigid_body_orders;
 mod rigid_body_problems;
 mod special_functions;
