@@ -41,15 +41,26 @@ pub struct SceneInfo {
     pub default_t_end: f64,
     /// Diagnostic columns after the coordinates and rates.
     pub diagnostics: &'static [&'static str],
+    /// Names of the rate columns when they are not the coordinates' derivatives (a rotation is
+    /// reported as a quaternion and its rates as the body angular velocity); empty: the
+    /// coordinates with `_dot`.
+    pub rate_names: &'static [&'static str],
 }
 
 impl SceneInfo {
-    /// The CSV header: `t`, coordinates, rates (`_dot`), diagnostics.
+    /// The CSV header: `t`, coordinates, rates (`_dot`, or [`Self::rate_names`]), diagnostics.
     #[must_use]
     pub fn columns(&self) -> Vec<String> {
         std::iter::once("t".to_string())
             .chain(self.coordinates.iter().map(|c| (*c).to_string()))
-            .chain(self.coordinates.iter().map(|c| format!("{c}_dot")))
+            .chain(if self.rate_names.is_empty() {
+                self.coordinates
+                    .iter()
+                    .map(|c| format!("{c}_dot"))
+                    .collect::<Vec<_>>()
+            } else {
+                self.rate_names.iter().map(|r| (*r).to_string()).collect()
+            })
             .chain(self.diagnostics.iter().map(|d| (*d).to_string()))
             .collect()
     }
@@ -299,7 +310,7 @@ impl<F: FnMut(f64, &SVector<f64, S>, &mut [f64]), const S: usize> Observer<SVect
 /// `row(t, y, out)` writes a row (`t`, coordinates, rates, diagnostics; `out` has `columns`
 /// entries); column `energy_column` must hold the energy, and the one after it receives the
 /// relative energy error.
-pub(crate) fn run_vector<P, F, const S: usize>(
+pub fn run_vector<P, F, const S: usize>(
     problem: &P,
     y0: SVector<f64, S>,
     resolved: &Resolved,

@@ -125,6 +125,7 @@ pub static CORIOLIS_DROP: SceneInfo = SceneInfo {
     default_step: 1e-3,
     default_t_end: 60.0,
     diagnostics: &["energy", "energy_rel_err"],
+    rate_names: &[],
 };
 
 /// Runs `coriolis-drop` until the body lands (or the horizon).

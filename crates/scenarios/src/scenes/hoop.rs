@@ -394,6 +394,7 @@ pub static DRIVEN_HOOP: SceneInfo = SceneInfo {
     default_step: 0.01,
     default_t_end: 10.0,
     diagnostics: &["energy", "energy_rel_err", "Lx", "Ly", "Lz", "tilt"],
+    rate_names: &[],
 };
 
 /// Runs `driven-hoop`.
@@ -491,6 +492,7 @@ pub static SPINNING_HOOP: SceneInfo = SceneInfo {
     default_step: 0.01,
     default_t_end: 10.0,
     diagnostics: &["energy", "energy_rel_err", "Lx", "Ly", "Lz", "tilt"],
+    rate_names: &[],
 };
 
 /// Runs `spinning-hoop`.

@@ -2,6 +2,7 @@
 //! oracle its tests use.
 
 pub mod coriolis;
+pub mod free_hoop;
 pub mod hoop;
 pub mod top;
 
@@ -14,6 +15,7 @@ pub fn builtin() -> &'static [&'static dyn Scene] {
     &[
         &hoop::DrivenHoopScene,
         &hoop::SpinningHoopScene,
+        &free_hoop::FreeHoopScene,
         &coriolis::CoriolisDropScene,
     ]
 }

@@ -1,0 +1,412 @@
+//! `free-hoop`: the article's question — the hoop free to rotate about its fixed centre in every
+//! direction, the bead sliding on it. It tilts.
+//!
+//! # Model: SO(3) × ℝ
+//!
+//! The configuration is the hoop's orientation `R ∈ SO(3)` (body → lab) and the bead angle `α`
+//! (geometry in [`super::hoop`]). As a rigid body coupled to one coordinate
+//! ([`tumble_integrators::rigid::CoupledLagrangian`]):
+//! `L = ½ Ωᵀ J(α) Ω + Ωᵀ B(α) α̇ + ½ M α̇² − V(R, α)` with
+//! `J(α) = diag(Ma²/2, Ma²/2, Ma²) + m (|r|² 𝟙 − r rᵀ)`, `B = m r × ∂r/∂α`, `M = m a²`,
+//! `V = m g (R r)_z`, `r = a (cos α, sin α, 0)`. The state is `(R, Π, α, p_α)` with `Π` the body
+//! angular momentum about the pivot. No chart: the hoop may pass through horizontal.
+//!
+//! The default integrator is the coupled Lie-group variational integrator (`lgvi`: symplectic,
+//! symmetric, order 2; it conserves `L_z` to round-off, since gravity is invariant under rotations
+//! about the vertical). Vector-space methods (`rk4`, `dp5`, `dop853`, `gauss2`…`gauss12`) run the
+//! flattened continuous equations `(R, Π, α, p_α) ∈ ℝ¹⁴` for reference solutions; Gauss–Legendre
+//! keeps `RᵀR = 𝟙` (a quadratic invariant) to round-off.
+//!
+//! Its AD twin and cross-check is the Euler-angle model [`super::hoop::FreeHoopEuler`].
+//!
+//! # Output
+//!
+//! Coordinates `qw, qx, qy, qz` (the unit quaternion of `R`, `w ≥ 0`) and `alpha`; rates
+//! `omega_x, omega_y, omega_z` (body angular velocity) and `alpha_dot`; diagnostics `energy`,
+//! `energy_rel_err`, `Lx, Ly, Lz` (lab, about the pivot) and `tilt` (`asin |n_z|`, `n = R e_z`).
+//!
+//! # Conserved
+//!
+//! Energy and `L_z`; with `g = 0` all of `L`, and time scales with `1/ω₀`.
+
+use std::f64::consts::FRAC_PI_2;
+
+use nalgebra::{Matrix3, SMatrix, SVector, Vector3};
+use tumble_integrators::rigid::{
+    CoupledLagrangian, CoupledLgvi, CoupledState, CoupledVectorField, KineticBlocks,
+    LieVectorField, Scalar, coupled_energy, coupled_state_from_velocities, coupled_velocities,
+};
+use tumble_integrators::{Driver, Flow, Observer, Ode};
+use tumble_kinematics::EulerConvention;
+use tumble_kinematics::so3::{hat, rotation_to_quat};
+
+use super::hoop::{HoopParams, tilt_from_normal};
+use crate::error::SceneError;
+use crate::params::{Domain, ParamSpec, Params};
+use crate::scene::{
+    Recorder, Resolved, RunOptions, RunSummary, Scene, SceneInfo, StepControl, run_vector,
+};
+
+/// The free hoop on SO(3) × ℝ.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FreeHoop {
+    /// Shared hoop parameters.
+    pub hoop: HoopParams,
+}
+
+impl CoupledLagrangian<1> for FreeHoop {
+    fn kinetic<D: Scalar>(&self, q: &SVector<D, 1>) -> KineticBlocks<D, 1> {
+        let p = &self.hoop;
+        let a = D::from(p.radius);
+        let m = D::from(p.bead_mass);
+        let (s, c) = (q[0].sin(), q[0].cos());
+        let r = Vector3::new(a * c, a * s, D::from(0.0));
+        let dr = Vector3::new(-(a * s), a * c, D::from(0.0));
+        let hoop = Matrix3::from_diagonal(&Vector3::new(
+            D::from(p.diameter_moment()),
+            D::from(p.diameter_moment()),
+            D::from(p.normal_moment()),
+        ));
+        let bead = (Matrix3::identity() * r.norm_squared() - r * r.transpose()) * m;
+        KineticBlocks {
+            rotational: hoop + bead,
+            coupling: SMatrix::<D, 3, 1>::from_column_slice((r.cross(&dr) * m).as_slice()),
+            internal: SMatrix::<D, 1, 1>::new(m * dr.norm_squared()),
+        }
+    }
+
+    fn potential<D: Scalar>(&self, rotation: &Matrix3<D>, q: &SVector<D, 1>) -> D {
+        let a = D::from(self.hoop.radius);
+        let r = Vector3::new(a * q[0].cos(), a * q[0].sin(), D::from(0.0));
+        (rotation * r).z * D::from(self.hoop.bead_mass * self.hoop.gravity)
+    }
+}
+
+impl FreeHoop {
+    /// The state with the hoop at ZYZ angles `(0, theta0, 0)` spinning at `omega0` about the lab
+    /// vertical, the bead at `alpha0` moving at `alpha_dot0`.
+    #[must_use]
+    pub fn initial_state(
+        &self,
+        theta0: f64,
+        omega0: f64,
+        alpha0: f64,
+        alpha_dot0: f64,
+    ) -> CoupledState<1> {
+        let conv = EulerConvention::ARTICLE;
+        let angles = Vector3::new(0.0, theta0, 0.0);
+        let rates = Vector3::new(omega0, 0.0, 0.0);
+        let rotation = conv.to_rotation(&angles);
+        let omega_body = conv.omega_body(&angles, &rates);
+        coupled_state_from_velocities(
+            self,
+            rotation.matrix(),
+            &omega_body,
+            &SVector::<f64, 1>::new(alpha0),
+            &SVector::<f64, 1>::new(alpha_dot0),
+        )
+    }
+
+    /// The tilt `asin |n_z|` of a state (0: standing, π/2: horizontal).
+    #[must_use]
+    pub fn tilt(state: &CoupledState<1>) -> f64 {
+        tilt_from_normal(&state.rotation.column(2).into_owned())
+    }
+}
+
+/// Flattened state `(R column-major, Π, α, p_α)`.
+pub type Flat = SVector<f64, 14>;
+
+/// Flattens a state.
+#[must_use]
+pub fn flatten(s: &CoupledState<1>) -> Flat {
+    let mut y = Flat::zeros();
+    y.fixed_rows_mut::<9>(0)
+        .copy_from_slice(s.rotation.as_slice());
+    y.fixed_rows_mut::<3>(9).copy_from(&s.momentum);
+    y[12] = s.q[0];
+    y[13] = s.p[0];
+    y
+}
+
+/// The state of a flattened vector.
+#[must_use]
+pub fn unflatten(y: &Flat) -> CoupledState<1> {
+    CoupledState {
+        rotation: Matrix3::from_column_slice(&y.as_slice()[..9]),
+        momentum: Vector3::new(y[9], y[10], y[11]),
+        q: SVector::<f64, 1>::new(y[12]),
+        p: SVector::<f64, 1>::new(y[13]),
+    }
+}
+
+/// The continuous equations of [`FreeHoop`] on `ℝ¹⁴`: `Ṙ = R hat Ω`, `(Π̇, α̇, ṗ)`.
+#[derive(Debug, Clone, Copy)]
+pub struct FlatFreeHoop(pub CoupledVectorField<FreeHoop, 1, 5>);
+
+impl FlatFreeHoop {
+    /// The flattened equations of `model`.
+    ///
+    /// # Errors
+    /// Never for this model (the dimensions are fixed); kept for the API's sake.
+    pub fn new(model: FreeHoop) -> Result<Self, SceneError> {
+        Ok(FlatFreeHoop(CoupledVectorField::new(model)?))
+    }
+}
+
+impl Ode<Flat> for FlatFreeHoop {
+    fn rhs(&self, t: f64, y: &Flat, dy: &mut Flat) {
+        let r = Matrix3::from_column_slice(&y.as_slice()[..9]);
+        let v = SVector::<f64, 5>::from_column_slice(&y.as_slice()[9..]);
+        let (xi, dv) = self.0.eval(t, &r, &v);
+        let rd = r * hat(&xi);
+        dy.fixed_rows_mut::<9>(0).copy_from_slice(rd.as_slice());
+        dy.fixed_rows_mut::<5>(9).copy_from(&dv);
+    }
+}
+
+/// Writes a row: t, quaternion, α, body ω, α̇, energy, (relative error slot), L, tilt.
+fn write_row(model: &FreeHoop, t: f64, s: &CoupledState<1>, out: &mut [f64]) {
+    let q = rotation_to_quat(&nalgebra::Rotation3::from_matrix_unchecked(s.rotation));
+    let (omega, qdot) = coupled_velocities(model, &s.q, &s.momentum, &s.p)
+        .unwrap_or((Vector3::repeat(f64::NAN), SVector::<f64, 1>::new(f64::NAN)));
+    let l = s.spatial_momentum();
+    let energy = coupled_energy(model, s).unwrap_or(f64::NAN);
+    let values = [
+        t,
+        q.w,
+        q.i,
+        q.j,
+        q.k,
+        s.q[0],
+        omega.x,
+        omega.y,
+        omega.z,
+        qdot[0],
+        energy,
+        0.0,
+        l.x,
+        l.y,
+        l.z,
+        FreeHoop::tilt(s),
+    ];
+    out.copy_from_slice(&values);
+}
+
+/// Column of the energy in a row.
+const ENERGY_COLUMN: usize = 10;
+
+static SPECS: [ParamSpec; 8] = [
+    ParamSpec {
+        name: "M",
+        default: 1.0,
+        unit: "kg",
+        description: "hoop mass",
+        domain: Domain::Positive,
+    },
+    ParamSpec {
+        name: "m",
+        default: 0.1,
+        unit: "kg",
+        description: "bead mass",
+        domain: Domain::NonNegative,
+    },
+    ParamSpec {
+        name: "a",
+        default: 1.0,
+        unit: "m",
+        description: "hoop radius",
+        domain: Domain::Positive,
+    },
+    ParamSpec {
+        name: "g",
+        default: 9.81,
+        unit: "m/s^2",
+        description: "gravitational acceleration (lab z up)",
+        domain: Domain::NonNegative,
+    },
+    ParamSpec {
+        name: "omega0",
+        default: 4.0,
+        unit: "rad/s",
+        description: "initial spin of the hoop about the lab vertical",
+        domain: Domain::Finite,
+    },
+    ParamSpec {
+        name: "alpha0",
+        default: 0.5,
+        unit: "rad",
+        description: "initial bead angle from the bottom of the hoop",
+        domain: Domain::Finite,
+    },
+    ParamSpec {
+        name: "alpha_dot0",
+        default: 0.0,
+        unit: "rad/s",
+        description: "initial rate of the bead along the hoop",
+        domain: Domain::Finite,
+    },
+    ParamSpec {
+        name: "theta0",
+        default: FRAC_PI_2,
+        unit: "rad",
+        description: "initial ZYZ angle theta of the hoop's normal from the vertical (pi/2: standing)",
+        domain: Domain::Finite,
+    },
+];
+
+/// Integrators that run the free hoop.
+pub const FREE_HOOP_INTEGRATORS: &[&str] = &[
+    "lgvi", "rk4", "dp5", "dop853", "gauss2", "gauss4", "gauss6", "gauss8", "gauss10", "gauss12",
+];
+
+/// The `free-hoop` scene.
+pub static FREE_HOOP: SceneInfo = SceneInfo {
+    name: "free-hoop",
+    summary: "bead on a hoop free to rotate in every direction about its fixed centre: the hoop tilts",
+    coordinates: &["qw", "qx", "qy", "qz", "alpha"],
+    parameters: &SPECS,
+    conserved: &["energy", "Lz", "all of L when g = 0"],
+    oracle: "energy and Lz conserved (all of L when g = 0); agrees with the Euler-angle twin away from theta = 0, pi",
+    integrators: FREE_HOOP_INTEGRATORS,
+    default_integrator: "lgvi",
+    default_step: 1e-3,
+    default_t_end: 10.0,
+    diagnostics: &["energy", "energy_rel_err", "Lx", "Ly", "Lz", "tilt"],
+    rate_names: &["omega_x", "omega_y", "omega_z", "alpha_dot"],
+};
+
+/// Runs `free-hoop`.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct FreeHoopScene;
+
+impl FreeHoopScene {
+    /// The model and initial state for `params`.
+    ///
+    /// # Errors
+    /// Unknown or invalid parameters.
+    pub fn model(params: &Params) -> Result<(FreeHoop, CoupledState<1>), SceneError> {
+        let hoop = HoopParams::new(
+            params.get("M")?,
+            params.get("m")?,
+            params.get("a")?,
+            params.get("g")?,
+        )?;
+        let model = FreeHoop { hoop };
+        let s0 = model.initial_state(
+            params.get("theta0")?,
+            params.get("omega0")?,
+            params.get("alpha0")?,
+            params.get("alpha_dot0")?,
+        );
+        Ok((model, s0))
+    }
+}
+
+/// Observer of coupled states: rows every `every` steps, energy error at every step.
+struct CoupledRows<'a> {
+    model: &'a FreeHoop,
+    buffer: [f64; 16],
+    energy0: Option<f64>,
+    max_rel: f64,
+    every: u64,
+    count: u64,
+    rows: u64,
+    recorder: &'a mut dyn Recorder,
+}
+
+impl Observer<CoupledState<1>> for CoupledRows<'_> {
+    fn observe(&mut self, t: f64, state: &CoupledState<1>) -> Flow {
+        write_row(self.model, t, state, &mut self.buffer);
+        let e = self.buffer[ENERGY_COLUMN];
+        let e0 = *self.energy0.get_or_insert(e);
+        let rel = if e0 != 0.0 {
+            ((e - e0) / e0).abs()
+        } else {
+            (e - e0).abs()
+        };
+        self.max_rel = self.max_rel.max(rel);
+        self.buffer[ENERGY_COLUMN + 1] = rel;
+        let flow = if self.count.is_multiple_of(self.every) {
+            self.rows += 1;
+            self.recorder.row(&self.buffer)
+        } else {
+            Flow::Continue
+        };
+        self.count += 1;
+        flow
+    }
+}
+
+/// Runs the free hoop with the coupled LGVI at a fixed step.
+fn run_lgvi(
+    model: &FreeHoop,
+    s0: CoupledState<1>,
+    resolved: &Resolved,
+    recorder: &mut dyn Recorder,
+) -> Result<RunSummary, SceneError> {
+    let StepControl::Fixed(h) = resolved.step else {
+        return Err(SceneError::InvalidOption {
+            option: "tol",
+            value: f64::NAN,
+            reason: "`lgvi` has a fixed step: give a step instead".into(),
+        });
+    };
+    let mut state = s0;
+    let mut stepper = CoupledLgvi::<1>::new();
+    let mut observer = CoupledRows {
+        model,
+        buffer: [0.0; 16],
+        energy0: None,
+        max_rel: 0.0,
+        every: resolved.every,
+        count: 0,
+        rows: 0,
+        recorder,
+    };
+    let report = Driver::new(0.0, resolved.t_end)?.run_fixed(
+        &mut stepper,
+        model,
+        &mut state,
+        h,
+        &mut observer,
+    )?;
+    Ok(RunSummary {
+        t: report.t,
+        steps: report.steps,
+        evaluations: report.steps,
+        max_energy_rel_err: observer.max_rel,
+        rows: observer.rows,
+    })
+}
+
+impl Scene for FreeHoopScene {
+    fn info(&self) -> &'static SceneInfo {
+        &FREE_HOOP
+    }
+
+    fn simulate(
+        &self,
+        params: &Params,
+        options: &RunOptions,
+        recorder: &mut dyn Recorder,
+    ) -> Result<RunSummary, SceneError> {
+        let info = self.info();
+        let resolved = options.resolve(info)?;
+        let (model, s0) = Self::model(params)?;
+        if resolved.integrator == "lgvi" {
+            return run_lgvi(&model, s0, &resolved, recorder);
+        }
+        let flat = FlatFreeHoop::new(model)?;
+        run_vector(
+            &flat,
+            flatten(&s0),
+            &resolved,
+            info.columns().len(),
+            ENERGY_COLUMN,
+            |t, y, out| write_row(&model, t, &unflatten(y), out),
+            &mut [],
+            recorder,
+        )
+    }
+}
