@@ -2,6 +2,8 @@
 //! library crates and maps errors to a message on stderr and a non-zero exit code.
 
 mod cmd;
+mod output;
+mod plot;
 
 use std::process::ExitCode;
 
@@ -23,6 +25,10 @@ enum Command {
     Integrators(cmd::integrators::Args),
     /// Angular velocity from Euler angles and rates, in the space and body frames
     Kinematics(cmd::kinematics::Args),
+    /// List the built-in scenes: coordinates, parameters, defaults, integrators
+    Scenes(cmd::scenes::Args),
+    /// Run a scene (built-in or TOML file) and write its trajectory as CSV, optionally a plot
+    Simulate(cmd::simulate::Args),
 }
 
 fn main() -> ExitCode {
@@ -31,6 +37,8 @@ fn main() -> ExitCode {
         Command::Inertia(args) => cmd::inertia::run(&args),
         Command::Integrators(args) => cmd::integrators::run(&args),
         Command::Kinematics(args) => cmd::kinematics::run(&args),
+        Command::Scenes(args) => cmd::scenes::run(&args),
+        Command::Simulate(args) => cmd::simulate::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -9,7 +9,7 @@
 use std::path::PathBuf;
 
 use super::args::parse_triple;
-use anyhow::{Context, Result, bail};
+use anyhow::{Context, Result};
 use nalgebra::{Matrix3, Point3, Vector3};
 use serde::Serialize;
 use tumble_inertia::{MassProperties, MassSpec, ValidationOptions, load_mesh};

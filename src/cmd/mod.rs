@@ -4,3 +4,5 @@ pub mod args;
 pub mod inertia;
 pub mod integrators;
 pub mod kinematics;
+pub mod scenes;
+pub mod simulate;

@@ -1,3 +1,5 @@
 //! Tests of the `tumble` binary: one module per subcommand, each running the built binary.
 
 mod inertia;
+mod scenes;
+mod simulate;

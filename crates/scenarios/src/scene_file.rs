@@ -108,7 +108,7 @@ impl fmt::Display for Location {
 #[non_exhaustive]
 pub enum SceneFileError {
     /// The file could not be read.
-    #[error("{}: cannot read the scene file: {source}", path.display())]
+    #[error("{}: cannot read the scene file", path.display())]
     Read {
         /// The path given.
         path: PathBuf,
@@ -137,14 +137,15 @@ pub enum SceneFileError {
     /// The scene, a parameter or a run option was rejected by the scene: unknown scene,
     /// unknown parameter, value outside its domain, unsupported integrator, invalid step,
     /// tolerance, horizon or cadence.
-    #[error("{at}: `{key}`: {source}")]
+    #[error("{at}: `{key}`: {error}")]
     Scene {
         /// Where the key is.
         at: Location,
         /// The dotted key (`scene`, `parameters.M`, `run.dt`).
         key: String,
-        /// What the scene said.
-        source: SceneError,
+        /// What the scene said (part of this error's message, so not a `source`; boxed to
+        /// keep the error small).
+        error: Box<SceneError>,
     },
     /// A value that must be a number is something else.
     #[error("{at}: `{key}` must be a number, found {found}")]
@@ -358,10 +359,10 @@ impl SceneFile {
                 known: known(),
             });
         };
-        let scene = scenes::find(scene_name.get_ref()).map_err(|source| SceneFileError::Scene {
+        let scene = scenes::find(scene_name.get_ref()).map_err(|error| SceneFileError::Scene {
             at: src.at(&scene_name.span()),
             key: "scene".to_string(),
-            source,
+            error: Box::new(error),
         })?;
         let info = scene.info();
 
@@ -381,10 +382,10 @@ impl SceneFile {
             let x = src.number(&key, &name.span(), value)?;
             params
                 .set(name.get_ref(), x)
-                .map_err(|source| SceneFileError::Scene {
+                .map_err(|error| SceneFileError::Scene {
                     at: src.at(&name.span()),
                     key,
-                    source,
+                    error: Box::new(error),
                 })?;
         }
 
@@ -453,8 +454,8 @@ impl Source<'_> {
             every,
         };
         // Validate the table as a whole and point at the key the scene complains about.
-        if let Err(source) = options.resolve(scene.info()) {
-            let (key, span) = match &source {
+        if let Err(error) = options.resolve(scene.info()) {
+            let (key, span) = match &error {
                 SceneError::UnsupportedIntegrator { .. } => {
                     ("integrator", run.integrator.as_ref().map(Spanned::span))
                 }
@@ -478,7 +479,7 @@ impl Source<'_> {
             return Err(SceneFileError::Scene {
                 at: self.at(&span.unwrap_or(table_span)),
                 key,
-                source,
+                error: Box::new(error),
             });
         }
         Ok(options)
@@ -565,13 +566,8 @@ mod tests {
         assert!(e.to_string().contains("driven-hoop"), "{e}");
         let e = parse("# a comment\nscene = \"warp-drive\"\n").unwrap_err();
         assert!(
-            matches!(
-                e,
-                SceneFileError::Scene {
-                    source: SceneError::UnknownScene { .. },
-                    ..
-                }
-            ),
+            matches!(&e, SceneFileError::Scene { error, .. }
+                if matches!(**error, SceneError::UnknownScene { .. })),
             "{e}"
         );
         assert_eq!(line_of(&e), 2);

@@ -1,0 +1,451 @@
+//! `tumble simulate`: run a built-in scene or a scene file and write its trajectory as CSV, with
+//! an optional plot.
+//!
+//! Two stages, as everywhere in the CLI: the flags are turned into a validated scene, parameter
+//! set and run options (scene file first, then `--set` and the run flags over it, then the
+//! scene's own validation) before any output file is created or any step is taken; then the
+//! scene runs, streaming rows to the CSV writer.
+//!
+//! Output contract (DESIGN §7): the header is the scene's columns (`t`, coordinates, `_dot`
+//! rates, diagnostics); every number is written in the shortest form that reads back to the
+//! same `f64` (ryu, through the `csv` crate). Files (`-o`, `--plot`) are written to a temporary
+//! file beside the destination and renamed when complete; a failed run leaves neither. A short
+//! summary goes to stderr.
+
+use std::io::{self, Write};
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use anyhow::{Context, Result, bail};
+use tumble_integrators::Flow;
+use tumble_scenarios::scene::Resolved;
+use tumble_scenarios::scene_file::SceneFile;
+use tumble_scenarios::scenes;
+use tumble_scenarios::{
+    ModelError, Params, Recorder, RunOptions, RunSummary, Scene, SceneError, StepControl,
+};
+
+use super::args::parse_angle;
+use crate::output;
+use crate::plot;
+
+/// Flags of `tumble simulate`.
+#[derive(clap::Args, Debug)]
+pub struct Args {
+    /// A built-in scene (`tumble scenes` lists them) or a TOML scene file (taken as a file if
+    /// the argument ends in `.toml` or names an existing file).
+    #[arg(value_name = "SCENE")]
+    pub scene: String,
+    /// Set a parameter of the scene, over its default or the scene file's value; repeat for
+    /// several. VALUE is a number or an angle expression such as `pi/2`, `-3pi/4`, `2*pi`.
+    #[arg(
+        long = "set",
+        value_name = "KEY=VALUE",
+        allow_hyphen_values = true,
+        action = clap::ArgAction::Append
+    )]
+    pub set: Vec<String>,
+    /// Integrator (from `tumble integrators`) among those the scene lists as applicable.
+    #[arg(long, value_name = "NAME")]
+    pub integrator: Option<String>,
+    /// Fixed step in seconds (fixed-step integrators).
+    #[arg(
+        long,
+        value_name = "H",
+        conflicts_with = "tol",
+        allow_negative_numbers = true
+    )]
+    pub dt: Option<f64>,
+    /// Error tolerance, rtol = atol = TOL (adaptive integrators: dp5, dop853).
+    #[arg(long, value_name = "TOL", allow_negative_numbers = true)]
+    pub tol: Option<f64>,
+    /// Horizon in seconds: integrate over [0, T].
+    #[arg(long = "t-end", value_name = "T", allow_negative_numbers = true)]
+    pub t_end: Option<f64>,
+    /// Write every N-th step (the first row is always the initial state).
+    #[arg(long, value_name = "N")]
+    pub every: Option<u64>,
+    /// Write the CSV to FILE instead of stdout (`-` is stdout).
+    #[arg(short = 'o', long = "output", value_name = "FILE.csv")]
+    pub output: Option<PathBuf>,
+    /// Also draw the coordinates, rates and relative energy error against time, as PNG or SVG
+    /// by the file's extension.
+    #[arg(long, value_name = "FILE.png|FILE.svg")]
+    pub plot: Option<PathBuf>,
+}
+
+/// A scene with its parameters and run options, validated, ready to run.
+struct Setup {
+    scene: &'static dyn Scene,
+    /// `builtin` or the scene file's path.
+    origin: String,
+    params: Params,
+    options: RunOptions,
+    resolved: Resolved,
+}
+
+/// Whether SCENE names a file rather than a built-in scene.
+fn is_file(arg: &str) -> bool {
+    Path::new(arg)
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("toml"))
+        || Path::new(arg).is_file()
+}
+
+/// Parses one `--set KEY=VALUE`.
+fn parse_set(raw: &str) -> Result<(&str, f64)> {
+    let Some((key, value)) = raw.split_once('=') else {
+        bail!("--set {raw}: expected KEY=VALUE, e.g. --set omega0=5 or --set alpha0=pi/2");
+    };
+    let key = key.trim();
+    if key.is_empty() {
+        bail!("--set {raw}: the parameter name is empty");
+    }
+    let Some(x) = parse_angle(value) else {
+        bail!(
+            "--set {raw}: `{}` is not a number (numbers and angle expressions such as 2.5, \
+             1e-3, pi/2, -3pi/4 are accepted)",
+            value.trim()
+        );
+    };
+    Ok((key, x))
+}
+
+/// Stage one: the scene, parameters and options from the flags, validated.
+fn setup(args: &Args) -> Result<Setup> {
+    let (scene, origin, mut params, mut options) = if is_file(&args.scene) {
+        let file = SceneFile::load(Path::new(&args.scene))?;
+        (file.scene, file.origin, file.params, file.run)
+    } else {
+        let scene = scenes::find(&args.scene).map_err(|e| match e {
+            SceneError::UnknownScene { name, known } => anyhow::anyhow!(
+                "unknown scene `{name}` (and no file of that name); built-in scenes: {known}; \
+                 a scene file must end in .toml"
+            ),
+            other => other.into(),
+        })?;
+        let params = scene.info().default_params();
+        (scene, "builtin".to_string(), params, RunOptions::default())
+    };
+    for raw in &args.set {
+        let (key, value) = parse_set(raw)?;
+        params
+            .set(key, value)
+            .with_context(|| format!("--set {raw}"))?;
+    }
+    if let Some(name) = &args.integrator {
+        options.integrator = Some(name.clone());
+    }
+    match (args.dt, args.tol) {
+        (Some(h), _) => options.step = Some(StepControl::Fixed(h)),
+        (None, Some(tol)) => options.step = Some(StepControl::Tolerance(tol)),
+        (None, None) => {}
+    }
+    if args.t_end.is_some() {
+        options.t_end = args.t_end;
+    }
+    if args.every.is_some() {
+        options.every = args.every;
+    }
+    let resolved = options
+        .resolve(scene.info())
+        .map_err(|e| anyhow::anyhow!("{}: {}", scene.info().name, flag_words(&e)))?;
+    Ok(Setup {
+        scene,
+        origin,
+        params,
+        options,
+        resolved,
+    })
+}
+
+/// A run-option error in the words of the command line (`--dt` for `dt`, `--t-end` for
+/// `t_end`).
+fn flag_words(e: &SceneError) -> String {
+    match e {
+        SceneError::InvalidOption {
+            option,
+            value,
+            reason,
+        } => {
+            let flag = match *option {
+                "t_end" => "--t-end",
+                "dt" => "--dt",
+                "tol" => "--tol",
+                "every" => "--every",
+                _ => return e.to_string(),
+            };
+            format!("{flag} {}: {reason}", number(*value))
+        }
+        SceneError::UnsupportedIntegrator { .. } => format!("--integrator: {e}"),
+        _ => e.to_string(),
+    }
+}
+
+/// A number as a person would type it: plain, or in exponent form when very small or large.
+fn number(x: f64) -> String {
+    if x != 0.0 && x.is_finite() && !(1e-4..1e6).contains(&x.abs()) {
+        format!("{x:e}")
+    } else {
+        format!("{x}")
+    }
+}
+
+/// The state a failure carries, if any.
+fn failure_state(e: &SceneError) -> Option<&[f64]> {
+    use tumble_integrators::Error as I;
+    match e {
+        SceneError::Model(
+            ModelError::SingularMassMatrix { state, .. } | ModelError::NonFinite { state, .. },
+        )
+        | SceneError::Integration(
+            I::NonFinite { state, .. }
+            | I::NoConvergence { state, .. }
+            | I::SingularMatrix { state, .. }
+            | I::StepSizeUnderflow { state, .. }
+            | I::TooManySteps { state, .. },
+        ) => Some(state),
+        _ => None,
+    }
+}
+
+/// A run failure with the state it carries, named by the scene's coordinates and rates.
+fn failure_message(scene: &str, e: &SceneError, coordinates: &[&str]) -> String {
+    let mut msg = format!("{scene}: {e}");
+    if let Some(state) = failure_state(e) {
+        let names: Vec<String> = coordinates
+            .iter()
+            .map(|c| (*c).to_string())
+            .chain(coordinates.iter().map(|c| format!("{c}_dot")))
+            .collect();
+        if names.len() == state.len() {
+            let parts: Vec<String> = names
+                .iter()
+                .zip(state)
+                .map(|(n, v)| format!("{n} = {}", number(*v)))
+                .collect();
+            msg += &format!("\n  state: {}", parts.join(", "));
+        } else {
+            let values: Vec<String> = state.iter().map(|v| number(*v)).collect();
+            msg += &format!("\n  state: [{}]", values.join(", "));
+        }
+    }
+    msg
+}
+
+/// Writes rows as CSV and keeps them, column by column, when a plot needs them.
+struct CsvRecorder<W: Write> {
+    csv: csv::Writer<W>,
+    keep: Option<Vec<Vec<f64>>>,
+    error: Option<csv::Error>,
+    /// Stdout was closed by the reader (`| head`): stop quietly.
+    closed: bool,
+}
+
+impl<W: Write> CsvRecorder<W> {
+    fn new(out: W, columns: &[String], keep: bool) -> Result<Self> {
+        let mut csv = csv::Writer::from_writer(out);
+        csv.write_record(columns)?;
+        Ok(CsvRecorder {
+            csv,
+            keep: keep.then(|| vec![Vec::new(); columns.len()]),
+            error: None,
+            closed: false,
+        })
+    }
+
+    fn fail(&mut self, e: csv::Error) -> Flow {
+        if matches!(e.kind(), csv::ErrorKind::Io(io) if io.kind() == io::ErrorKind::BrokenPipe) {
+            self.closed = true;
+        } else {
+            self.error = Some(e);
+        }
+        Flow::Stop
+    }
+
+    /// Flushes; the kept columns and whether the reader closed the output early, or the first
+    /// write error.
+    fn finish(mut self) -> Result<(Option<Vec<Vec<f64>>>, bool)> {
+        if let Some(e) = self.error.take() {
+            return Err(e.into());
+        }
+        if !self.closed
+            && let Err(e) = self.csv.flush()
+        {
+            if e.kind() == io::ErrorKind::BrokenPipe {
+                self.closed = true;
+            } else {
+                return Err(e.into());
+            }
+        }
+        Ok((self.keep, self.closed))
+    }
+}
+
+impl<W: Write> Recorder for CsvRecorder<W> {
+    fn row(&mut self, values: &[f64]) -> Flow {
+        if let Err(e) = self.csv.serialize(values) {
+            return self.fail(e);
+        }
+        if let Some(keep) = &mut self.keep {
+            for (column, &v) in keep.iter_mut().zip(values) {
+                column.push(v);
+            }
+        }
+        Flow::Continue
+    }
+}
+
+fn step_words(step: StepControl) -> String {
+    match step {
+        StepControl::Fixed(h) => format!("fixed step dt = {h} s"),
+        StepControl::Tolerance(tol) => format!("tolerance {}", number(tol)),
+    }
+}
+
+/// What a run produced.
+struct Outcome {
+    summary: RunSummary,
+    /// The rows, column by column, when a plot needs them.
+    kept: Option<Vec<Vec<f64>>>,
+    /// The reader closed the output before the end (`| head`).
+    closed: bool,
+}
+
+/// Runs the scene into `out`.
+fn run_into<W: Write>(setup: &Setup, out: W, keep: bool) -> Result<Outcome> {
+    let info = setup.scene.info();
+    let mut recorder = CsvRecorder::new(out, &info.columns(), keep)?;
+    let result = setup
+        .scene
+        .simulate(&setup.params, &setup.options, &mut recorder);
+    let summary =
+        result.map_err(|e| anyhow::anyhow!(failure_message(info.name, &e, info.coordinates)))?;
+    let (kept, closed) = recorder.finish().context("cannot write the CSV")?;
+    Ok(Outcome {
+        summary,
+        kept,
+        closed,
+    })
+}
+
+/// Runs the subcommand.
+///
+/// # Errors
+/// Invalid scene, parameters or options (before anything is written); a model or integration
+/// failure (with its time and state); an output that cannot be written.
+pub fn run(args: &Args) -> Result<()> {
+    let setup = setup(args)?;
+    let info = setup.scene.info();
+    if let Some(path) = &args.plot {
+        plot::Format::from_path(path)?;
+        let dir = output::directory_of(path);
+        if !dir.is_dir() {
+            bail!(
+                "--plot {}: the directory {} does not exist",
+                path.display(),
+                dir.display()
+            );
+        }
+    }
+    let to_file = args.output.as_ref().filter(|p| p.as_os_str() != "-");
+    let start = Instant::now();
+    let (outcome, written) = match to_file {
+        Some(path) => {
+            let mut temp = output::temp_file_beside(path).context("-o")?;
+            let outcome = run_into(&setup, temp.as_file_mut(), args.plot.is_some())?;
+            (outcome, Some((path, temp.into_temp_path())))
+        }
+        None => (
+            run_into(&setup, io::stdout().lock(), args.plot.is_some())?,
+            None,
+        ),
+    };
+    let Outcome {
+        summary,
+        kept,
+        closed,
+    } = outcome;
+    let elapsed = start.elapsed();
+
+    if let (Some(path), Some(values)) = (&args.plot, &kept) {
+        let columns = info.columns();
+        let run = plot::trajectory::Run {
+            columns: &columns,
+            values,
+            coordinates: info.coordinates,
+        };
+        let mut figure = plot::trajectory::figure(
+            format!(
+                "{} — {}, {}",
+                info.name,
+                setup.resolved.integrator,
+                step_words(setup.resolved.step)
+            ),
+            &run,
+        );
+        figure.subtitle = setup
+            .params
+            .iter()
+            .map(|(k, v)| format!("{k} = {v}"))
+            .collect::<Vec<_>>()
+            .join(", ");
+        plot::save(&figure, path)?;
+    }
+    if let Some((path, temp)) = written
+        && let Err(e) = output::commit(temp, path)
+    {
+        if let Some(plot) = &args.plot {
+            // Do not leave the plot of a run whose CSV could not be written.
+            let _ = std::fs::remove_file(plot);
+        }
+        return Err(e);
+    }
+
+    let r = &setup.resolved;
+    let source = if setup.origin == "builtin" {
+        String::new()
+    } else {
+        format!(" (from {})", setup.origin)
+    };
+    let destination = match to_file {
+        Some(p) => p.display().to_string(),
+        None => "stdout".to_string(),
+    };
+    eprintln!("scene        {}{source}", info.name);
+    eprintln!(
+        "integrator   {}, {}, t in [0, {}] s",
+        r.integrator,
+        step_words(r.step),
+        r.t_end
+    );
+    eprintln!(
+        "work         {} steps, {} evaluations, reached t = {}",
+        summary.steps, summary.evaluations, summary.t
+    );
+    eprintln!(
+        "energy       max relative error {:.3e}",
+        summary.max_energy_rel_err
+    );
+    eprintln!(
+        "output       {} rows (every {} step{}) to {destination}{}",
+        summary.rows,
+        r.every,
+        if r.every == 1 { "" } else { "s" },
+        if closed {
+            ", closed early by the reader"
+        } else {
+            ""
+        }
+    );
+    if let Some(p) = &args.plot {
+        eprintln!("plot         {}", p.display());
+    }
+    let seconds = elapsed.as_secs_f64();
+    if seconds < 1.0 {
+        eprintln!("wall time    {:.1} ms", 1e3 * seconds);
+    } else {
+        eprintln!("wall time    {seconds:.3} s");
+    }
+    Ok(())
+}

@@ -1,0 +1,243 @@
+//! Plots (plotters): PNG and SVG figures with text that renders without system fonts.
+//!
+//! # Design
+//!
+//! * **A shipped font.** DejaVu Sans (`assets/fonts/DejaVuSans.ttf`, licence beside it) is
+//!   compiled into the binary and registered with plotters' `ab_glyph` backend as the
+//!   `sans-serif` family ([`register_fonts`]), so text renders the same on a machine without
+//!   fontconfig or any installed font. SVG output names the `sans-serif` family; the shipped
+//!   font only measures the text there.
+//! * **Figures are values.** A [`Figure`] knows its size and draws itself on any plotters
+//!   backend; [`save`] picks PNG or SVG from the file's extension and writes the file whole or
+//!   not at all (temporary file beside it, renamed when complete).
+//! * **Reusable parts.** [`xy`] has stacked panels of line or point series on linear or
+//!   logarithmic axes (trajectories against time; log-log work–precision plots), [`colour`] a
+//!   colour-blind-safe palette for series and the viridis map for heatmaps with a colour bar,
+//!   [`trajectory`] the `simulate --plot` figure built from those.
+
+pub mod colour;
+pub mod text;
+pub mod trajectory;
+pub mod xy;
+
+use std::path::Path;
+use std::sync::OnceLock;
+
+use anyhow::{Context, Result, anyhow, bail};
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use plotters::style::{FontStyle, register_font};
+
+use crate::output;
+
+/// The font family every figure uses; [`register_fonts`] binds it to the shipped font.
+pub const FONT: &str = "sans-serif";
+
+/// DejaVu Sans, compiled in (licence: `assets/fonts/LICENSE-DejaVu.txt`).
+static DEJAVU_SANS: &[u8] = include_bytes!("../../assets/fonts/DejaVuSans.ttf");
+
+/// Registers the shipped font as the [`FONT`] family (normal, bold, oblique and italic styles
+/// all fall back to it). Idempotent; [`save`] calls it.
+///
+/// # Errors
+/// If the compiled-in font cannot be parsed (a corrupt build).
+pub fn register_fonts() -> Result<()> {
+    static REGISTERED: OnceLock<bool> = OnceLock::new();
+    let ok =
+        *REGISTERED.get_or_init(|| register_font(FONT, FontStyle::Normal, DEJAVU_SANS).is_ok());
+    if ok {
+        Ok(())
+    } else {
+        bail!("the compiled-in font DejaVuSans.ttf could not be parsed")
+    }
+}
+
+/// What drawing on a backend `DB` returns.
+pub type DrawResult<DB> = Result<(), DrawingAreaErrorKind<<DB as DrawingBackend>::ErrorType>>;
+
+/// A figure that can draw itself on any plotters backend.
+pub trait Figure {
+    /// Size in pixels (SVG user units).
+    fn size(&self) -> (u32, u32);
+
+    /// Draws on `root`, which covers the whole figure at `scale` device pixels per figure
+    /// pixel: every length (fonts, margins, line widths, marks) is multiplied by `scale`.
+    /// [`save`] draws PNGs at scale [`SUPERSAMPLE`] and averages down, SVGs at scale 1.
+    ///
+    /// # Errors
+    /// The backend's drawing errors.
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>, scale: f64)
+    -> DrawResult<DB>;
+}
+
+/// PNGs are drawn at this many device pixels per image pixel in each direction and averaged
+/// down: anti-aliased lines and marks (plotters draws them aliased).
+pub const SUPERSAMPLE: u32 = 3;
+
+/// Averages each `k × k` block of an RGB image of `(w·k) × (h·k)` pixels into one pixel.
+#[must_use]
+pub fn downsample(rgb: &[u8], (w, h): (u32, u32), k: u32) -> Vec<u8> {
+    let (w, h, k) = (w as usize, h as usize, k as usize);
+    let big_w = w * k;
+    let mut out = vec![0u8; w * h * 3];
+    for y in 0..h {
+        for x in 0..w {
+            for c in 0..3 {
+                let mut sum = 0u32;
+                for j in 0..k {
+                    let row = (y * k + j) * big_w;
+                    for i in 0..k {
+                        sum += u32::from(rgb[(row + x * k + i) * 3 + c]);
+                    }
+                }
+                let n = (k * k) as u32;
+                out[(y * w + x) * 3 + c] = ((sum + n / 2) / n) as u8;
+            }
+        }
+    }
+    out
+}
+
+/// Image formats, chosen by file extension.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Format {
+    /// Portable Network Graphics (`.png`), rendered with the shipped font.
+    Png,
+    /// Scalable Vector Graphics (`.svg`).
+    Svg,
+}
+
+impl Format {
+    /// The format of `path` from its extension (case-insensitive).
+    ///
+    /// # Errors
+    /// If the extension is neither `png` nor `svg`.
+    pub fn from_path(path: &Path) -> Result<Self> {
+        let ext = path
+            .extension()
+            .map(|e| e.to_string_lossy().to_ascii_lowercase());
+        match ext.as_deref() {
+            Some("png") => Ok(Format::Png),
+            Some("svg") => Ok(Format::Svg),
+            _ => bail!(
+                "{}: plots are written as .png or .svg (chosen by the file's extension)",
+                path.display()
+            ),
+        }
+    }
+}
+
+/// Draws `figure` into `path` (PNG or SVG by extension), atomically: nothing is left at `path`
+/// unless the whole image was written.
+///
+/// # Errors
+/// An unknown extension, an unwritable directory, or a drawing error.
+pub fn save(figure: &impl Figure, path: &Path) -> Result<()> {
+    let format = Format::from_path(path)?;
+    register_fonts()?;
+    let temp = output::temp_path_beside(path)?;
+    let size = figure.size();
+    let drawn = match format {
+        Format::Png => {
+            let k = SUPERSAMPLE;
+            let big = (size.0 * k, size.1 * k);
+            let mut rgb = vec![255u8; big.0 as usize * big.1 as usize * 3];
+            let drawn = {
+                let root = text::ShapedText::new(BitMapBackend::with_buffer(&mut rgb, big))
+                    .into_drawing_area();
+                figure
+                    .draw(&root, f64::from(k))
+                    .and_then(|()| root.present())
+                    .map_err(|e| anyhow!("{e}"))
+            };
+            drawn.and_then(|()| {
+                let small = downsample(&rgb, size, k);
+                let mut png = BitMapBackend::new(&temp, size);
+                png.blit_bitmap((0, 0), size, &small)
+                    .and_then(|()| png.present())
+                    .map_err(|e| anyhow!("{e}"))
+            })
+        }
+        Format::Svg => {
+            let root = SVGBackend::new(&temp, size).into_drawing_area();
+            figure
+                .draw(&root, 1.0)
+                .and_then(|()| root.present())
+                .map_err(|e| anyhow!("{e}"))
+        }
+    };
+    drawn.with_context(|| format!("cannot draw {}", path.display()))?;
+    output::commit(temp, path)
+}
+
+/// A text style of the shipped font at `size` pixels.
+#[must_use]
+pub fn font(size: f64) -> TextStyle<'static> {
+    TextStyle::from((FONT, size).into_font())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A figure with text in every position plotters puts it (title, rotated axis label,
+    /// legend), to prove the font path works without system fonts.
+    fn figure() -> xy::StackedFigure {
+        let t: Vec<f64> = (0..200).map(|i| f64::from(i) * 0.05).collect();
+        xy::StackedFigure {
+            title: "test — α(t)".into(),
+            subtitle: "M = 1, a = 0.4".into(),
+            width: 640,
+            panel_height: 240,
+            panels: vec![
+                xy::Panel::new("time (s)", "angle (rad)").with_series(xy::Series::line(
+                    "alpha",
+                    t.iter().map(|&t| (t, t.sin())).collect(),
+                )),
+                xy::Panel::new("time (s)", "relative energy error")
+                    .with_y_scale(xy::Scale::Log)
+                    .with_series(xy::Series::line(
+                        "|E − E₀|/|E₀|",
+                        t.iter().map(|&t| (t, 1e-15 * (1.0 + t))).collect(),
+                    )),
+            ],
+        }
+    }
+
+    #[test]
+    fn png_and_svg_are_written_with_the_shipped_font() {
+        let dir = tempfile::tempdir().unwrap();
+        let png = dir.path().join("plot.png");
+        let svg = dir.path().join("plot.svg");
+        save(&figure(), &png).unwrap();
+        save(&figure(), &svg).unwrap();
+        let bytes = std::fs::read(&png).unwrap();
+        assert!(bytes.starts_with(b"\x89PNG\r\n\x1a\n"), "not a PNG");
+        assert!(bytes.len() > 1000);
+        let text = std::fs::read_to_string(&svg).unwrap();
+        assert!(text.contains("<svg"), "no SVG root");
+        assert!(text.contains("angle (rad)"));
+        // Only the two plots: no temporary file is left beside them.
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 2);
+    }
+
+    #[test]
+    fn downsampling_averages_blocks() {
+        // 2 × 1 image at k = 2: a black block and a half-white block.
+        let mut big = vec![0u8; 4 * 2 * 3];
+        for (i, px) in big.chunks_mut(3).enumerate() {
+            let (x, y) = (i % 4, i / 4);
+            let v = if x >= 2 && y == 0 { 255 } else { 0 };
+            px.copy_from_slice(&[v, v, v]);
+        }
+        assert_eq!(downsample(&big, (2, 1), 2), vec![0, 0, 0, 128, 128, 128]);
+    }
+
+    #[test]
+    fn unknown_extensions_are_refused_before_anything_is_written() {
+        let dir = tempfile::tempdir().unwrap();
+        let err = save(&figure(), &dir.path().join("plot.jpg")).unwrap_err();
+        assert!(err.to_string().contains(".png or .svg"), "{err}");
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
+    }
+}

@@ -1,0 +1,505 @@
+//! `tumble simulate`: the CSV contract (header, full-precision rows, first row = initial
+//! conditions), scene files and `--set`, plots, and bad input — each rejected with a message
+//! that names what is wrong (and the line, for files), a non-zero exit code, and no output file
+//! left behind.
+
+use std::f64::consts::PI;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use tempfile::TempDir;
+use tumble_scenarios::scene::Rows;
+use tumble_scenarios::scenes::find;
+use tumble_scenarios::{RunOptions, StepControl};
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// Runs `tumble` in `dir`.
+fn tumble_in(dir: &Path, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_tumble"))
+        .current_dir(dir)
+        .args(args)
+        .output()
+        .expect("cannot run the tumble binary")
+}
+
+fn stderr(out: &Output) -> String {
+    String::from_utf8_lossy(&out.stderr).into_owned()
+}
+
+fn succeeds(dir: &Path, args: &[&str]) -> Output {
+    let out = tumble_in(dir, args);
+    assert!(out.status.success(), "{args:?} failed: {}", stderr(&out));
+    out
+}
+
+/// Parses CSV text: the header and the rows as numbers.
+fn parse_csv(text: &str) -> (Vec<String>, Vec<Vec<f64>>) {
+    let mut reader = csv::Reader::from_reader(text.as_bytes());
+    let header = reader
+        .headers()
+        .unwrap()
+        .iter()
+        .map(str::to_string)
+        .collect();
+    let rows = reader
+        .records()
+        .map(|r| {
+            r.unwrap()
+                .iter()
+                .map(|v| v.parse::<f64>().expect("a number"))
+                .collect()
+        })
+        .collect();
+    (header, rows)
+}
+
+fn read_csv(path: &Path) -> (Vec<String>, Vec<Vec<f64>>) {
+    parse_csv(&std::fs::read_to_string(path).expect("CSV written"))
+}
+
+/// Every entry of a directory (hidden temporary files included).
+fn entries(dir: &Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    names
+}
+
+/// Runs a failing command in a fresh directory holding only `files`; checks the exit code,
+/// that stderr mentions every one of `expect`, and that nothing else was written.
+fn fails(files: &[(&str, &str)], args: &[&str], expect: &[&str]) -> String {
+    let dir = TempDir::new().unwrap();
+    for (name, text) in files {
+        std::fs::write(dir.path().join(name), text).unwrap();
+    }
+    let before = entries(dir.path());
+    let out = tumble_in(dir.path(), args);
+    let err = stderr(&out);
+    assert!(!out.status.success(), "{args:?} succeeded");
+    assert_eq!(out.status.code(), Some(1), "{args:?}: {err}");
+    assert!(err.starts_with("error: "), "{args:?}: {err}");
+    for e in expect {
+        assert!(err.contains(e), "{args:?}: `{e}` missing from: {err}");
+    }
+    assert_eq!(
+        entries(dir.path()),
+        before,
+        "{args:?} left files behind: {err}"
+    );
+    err
+}
+
+#[test]
+fn driven_hoop_csv_has_the_header_rows_and_initial_conditions() {
+    let dir = TempDir::new().unwrap();
+    let out = succeeds(
+        dir.path(),
+        &["simulate", "driven-hoop", "--t-end", "1", "-o", "out.csv"],
+    );
+    assert!(out.stdout.is_empty(), "CSV went to stdout as well");
+    let (header, rows) = read_csv(&dir.path().join("out.csv"));
+    assert_eq!(
+        header,
+        [
+            "t",
+            "alpha",
+            "alpha_dot",
+            "energy",
+            "energy_rel_err",
+            "Lx",
+            "Ly",
+            "Lz",
+            "tilt"
+        ]
+    );
+    // dt = 0.01 over [0, 1]: the initial state and 100 steps.
+    assert_eq!(rows.len(), 101);
+    assert!(rows.iter().all(|r| r.len() == header.len()));
+    let info = find("driven-hoop").unwrap().info();
+    let defaults = info.default_params();
+    let first = &rows[0];
+    assert_eq!(first[0], 0.0);
+    assert_eq!(first[1], defaults.get("alpha0").unwrap());
+    assert_eq!(first[2], defaults.get("alpha_dot0").unwrap());
+    assert_eq!(first[4], 0.0, "relative energy error at t = 0");
+    assert!((rows[100][0] - 1.0).abs() < 1e-12);
+    assert!(rows.windows(2).all(|w| w[1][0] > w[0][0]), "time not increasing");
+    // Only the CSV is left: no temporary file.
+    assert_eq!(entries(dir.path()), ["out.csv"]);
+    // The summary names the scene, integrator and step.
+    let err = stderr(&out);
+    for word in ["driven-hoop", "gauss8", "dt = 0.01", "100 steps", "101 rows"] {
+        assert!(err.contains(word), "{word}: {err}");
+    }
+}
+
+#[test]
+fn csv_values_round_trip_to_the_library_run_bit_for_bit() {
+    let dir = TempDir::new().unwrap();
+    let out = succeeds(
+        dir.path(),
+        &[
+            "simulate",
+            "spinning-hoop",
+            "--t-end",
+            "0.5",
+            "--dt",
+            "0.005",
+            "--integrator",
+            "gauss6",
+        ],
+    );
+    let (_, rows) = parse_csv(&String::from_utf8(out.stdout).unwrap());
+    let scene = find("spinning-hoop").unwrap();
+    let mut expected = Rows::default();
+    scene
+        .simulate(
+            &scene.info().default_params(),
+            &RunOptions {
+                integrator: Some("gauss6".into()),
+                step: Some(StepControl::Fixed(0.005)),
+                t_end: Some(0.5),
+                every: None,
+            },
+            &mut expected,
+        )
+        .unwrap();
+    assert_eq!(rows.len(), expected.0.len());
+    for (got, want) in rows.iter().zip(&expected.0) {
+        for (g, w) in got.iter().zip(want) {
+            assert_eq!(g.to_bits(), w.to_bits(), "{g} vs {w}");
+        }
+    }
+}
+
+#[test]
+fn set_accepts_angle_expressions_and_every_thins_the_rows() {
+    let dir = TempDir::new().unwrap();
+    let out = succeeds(
+        dir.path(),
+        &[
+            "simulate",
+            "driven-hoop",
+            "--set",
+            "alpha0=pi/3",
+            "--set",
+            "alpha_dot0=-0.25",
+            "--t-end",
+            "1",
+            "--every",
+            "10",
+        ],
+    );
+    let (_, rows) = parse_csv(&String::from_utf8(out.stdout).unwrap());
+    assert_eq!(rows[0][1], PI / 3.0);
+    assert_eq!(rows[0][2], -0.25);
+    assert!((11..=12).contains(&rows.len()), "{} rows", rows.len());
+    assert!((rows[1][0] - 0.1).abs() < 1e-12);
+}
+
+const WORKED_EXAMPLE: &str = "\
+scene = \"spinning-hoop\"
+
+[parameters]
+M = 1
+a = 0.4
+m = 0.2
+omega0 = 5.0
+alpha0 = 3.0
+
+[run]
+dt = 0.002
+t_end = 0.2
+";
+
+#[test]
+fn a_scene_file_sets_parameters_and_run_options_and_set_overrides_them() {
+    let dir = TempDir::new().unwrap();
+    std::fs::write(dir.path().join("spin.toml"), WORKED_EXAMPLE).unwrap();
+    let out = succeeds(dir.path(), &["simulate", "spin.toml", "-o", "a.csv"]);
+    let (header, rows) = read_csv(&dir.path().join("a.csv"));
+    assert_eq!(header[1..5], ["phi", "alpha", "phi_dot", "alpha_dot"]);
+    assert_eq!(rows[0][2], 3.0);
+    assert_eq!(rows[0][3], 5.0);
+    assert_eq!(rows.len(), 101, "dt = 0.002 over [0, 0.2]");
+    assert!(stderr(&out).contains("spin.toml"));
+    // L_z = (M a²/2 + m a² sin²α) φ̇ is conserved.
+    let lz = |r: &Vec<f64>| (0.08 + 0.032 * r[2].sin().powi(2)) * r[3];
+    let last = rows.last().unwrap();
+    assert!((lz(last) - lz(&rows[0])).abs() < 1e-12);
+
+    succeeds(
+        dir.path(),
+        &[
+            "simulate",
+            "spin.toml",
+            "--set",
+            "omega0=2",
+            "--t-end",
+            "0.1",
+            "-o",
+            "b.csv",
+        ],
+    );
+    let (_, rows) = read_csv(&dir.path().join("b.csv"));
+    assert_eq!(rows[0][3], 2.0, "--set overrides the file");
+    assert_eq!(rows[0][2], 3.0, "the file's other values stay");
+    assert_eq!(rows.len(), 51, "--t-end overrides the file, its dt stays");
+}
+
+#[test]
+fn the_shipped_scene_files_run() {
+    for file in ["driven-hoop.toml", "spinning-hoop-worked-example.toml"] {
+        let path = root().join("scenes").join(file);
+        let dir = TempDir::new().unwrap();
+        let out = succeeds(
+            dir.path(),
+            &["simulate", path.to_str().unwrap(), "--t-end", "0.1"],
+        );
+        let (_, rows) = parse_csv(&String::from_utf8(out.stdout).unwrap());
+        assert!(rows.len() > 1, "{file}");
+    }
+}
+
+#[test]
+fn plots_are_written_as_png_and_svg() {
+    let dir = TempDir::new().unwrap();
+    succeeds(
+        dir.path(),
+        &[
+            "simulate",
+            "spinning-hoop",
+            "--t-end",
+            "1",
+            "-o",
+            "run.csv",
+            "--plot",
+            "run.png",
+        ],
+    );
+    let png = std::fs::read(dir.path().join("run.png")).unwrap();
+    assert!(png.starts_with(b"\x89PNG\r\n\x1a\n"), "not a PNG");
+    assert!(png.len() > 10_000, "suspiciously small PNG");
+    succeeds(
+        dir.path(),
+        &[
+            "simulate",
+            "driven-hoop",
+            "--t-end",
+            "1",
+            "-o",
+            "run2.csv",
+            "--plot",
+            "run.svg",
+        ],
+    );
+    let svg = std::fs::read_to_string(dir.path().join("run.svg")).unwrap();
+    assert!(svg.contains("<svg") && svg.trim_end().ends_with("</svg>"));
+    for label in ["time t (s)", "angle (rad)", "angle rate (rad/s)", "driven-hoop"] {
+        assert!(svg.contains(label), "{label} missing from the SVG");
+    }
+    assert_eq!(
+        entries(dir.path()),
+        ["run.csv", "run.png", "run.svg", "run2.csv"]
+    );
+}
+
+#[test]
+fn unknown_scenes_and_parameters_are_named() {
+    fails(
+        &[],
+        &["simulate", "warp-drive", "-o", "x.csv"],
+        &["unknown scene `warp-drive`", "driven-hoop"],
+    );
+    fails(
+        &[],
+        &["simulate", "driven-hoop", "--set", "nope=1", "-o", "x.csv"],
+        &["--set nope=1", "no parameter `nope`", "omega"],
+    );
+    fails(
+        &[],
+        &["simulate", "driven-hoop", "--set", "omega=fast", "-o", "x.csv"],
+        &["`fast` is not a number"],
+    );
+    fails(
+        &[],
+        &["simulate", "driven-hoop", "--set", "omega", "-o", "x.csv"],
+        &["KEY=VALUE"],
+    );
+}
+
+#[test]
+fn non_physical_and_non_finite_parameters_are_rejected() {
+    fails(
+        &[],
+        &["simulate", "driven-hoop", "--set", "M=-1", "-o", "x.csv"],
+        &["--set M=-1", "`M` = -1", "positive"],
+    );
+    fails(
+        &[],
+        &["simulate", "driven-hoop", "--set", "g=nan", "-o", "x.csv"],
+        &["--set g=nan", "`g` = NaN", "finite"],
+    );
+    fails(
+        &[],
+        &["simulate", "driven-hoop", "--set", "a=inf", "-o", "x.csv"],
+        &["`a` = inf", "finite"],
+    );
+}
+
+#[test]
+fn bad_steps_horizons_and_integrators_are_rejected() {
+    let cases: &[(&[&str], &[&str])] = &[
+        (&["--dt", "0"], &["--dt 0", "positive"]),
+        (&["--dt", "-0.01"], &["--dt -0.01", "positive"]),
+        (&["--dt", "nan"], &["--dt NaN"]),
+        (
+            &["--dt", "2", "--t-end", "1"],
+            &["--dt 2", "larger than the horizon"],
+        ),
+        (&["--t-end", "-1"], &["--t-end -1", "positive"]),
+        (&["--every", "0"], &["--every 0", "at least 1"]),
+        (
+            &["--integrator", "lgvi"],
+            &["`lgvi` cannot run scene `driven-hoop`", "gauss8"],
+        ),
+        (&["--integrator", "nope"], &["`nope`", "applicable"]),
+        (
+            &["--integrator", "dp5", "--dt", "0.01"],
+            &["adaptive", "tolerance"],
+        ),
+        (&["--tol", "1e-9"], &["--tol 1e-9", "fixed step"]),
+        (
+            &["--integrator", "dop853", "--tol", "0"],
+            &["--tol 0", "positive"],
+        ),
+    ];
+    for (flags, expect) in cases {
+        let mut args = vec!["simulate", "driven-hoop", "-o", "x.csv"];
+        args.extend_from_slice(flags);
+        fails(&[], &args, expect);
+    }
+}
+
+#[test]
+fn bad_output_paths_are_rejected_before_running() {
+    fails(
+        &[],
+        &["simulate", "driven-hoop", "-o", "x.csv", "--plot", "x.jpg"],
+        &[".png or .svg"],
+    );
+    fails(
+        &[],
+        &["simulate", "driven-hoop", "-o", "missing/x.csv"],
+        &["missing/x.csv", "does not exist"],
+    );
+    fails(
+        &[],
+        &["simulate", "driven-hoop", "-o", "x.csv", "--plot", "no/x.png"],
+        &["no/x.png", "does not exist"],
+    );
+}
+
+#[test]
+fn a_run_that_fails_midway_reports_time_and_state_and_leaves_no_file() {
+    // ω = 1e200 makes ω² overflow: the first step produces a non-finite state.
+    let err = fails(
+        &[],
+        &[
+            "simulate",
+            "driven-hoop",
+            "--set",
+            "omega=1e200",
+            "--integrator",
+            "rk4",
+            "--dt",
+            "0.5",
+            "-o",
+            "x.csv",
+            "--plot",
+            "x.png",
+        ],
+        &["driven-hoop", "non-finite", "t = 0", "state: alpha = "],
+    );
+    assert!(err.contains("alpha_dot = "), "{err}");
+}
+
+#[test]
+fn malformed_scene_files_are_rejected_with_their_line() {
+    let cases: &[(&str, &[&str])] = &[
+        (
+            "scene = \"driven-hoop\"\n[parameters]\nM = = 1\n",
+            &["bad.toml:3:"],
+        ),
+        (
+            "scene = \"driven-hoop\"\nspeed = 2\n",
+            &["bad.toml:2:", "speed"],
+        ),
+        (
+            "[parameters]\nM = 1\n",
+            &["bad.toml", "missing `scene", "driven-hoop"],
+        ),
+        (
+            "\nscene = \"warp-drive\"\n",
+            &["bad.toml:2:", "unknown scene `warp-drive`"],
+        ),
+        (
+            "scene = \"driven-hoop\"\n[parameters]\nmass = 2\n",
+            &["bad.toml:3:", "parameters.mass", "no parameter `mass`"],
+        ),
+        (
+            "scene = \"driven-hoop\"\n[parameters]\nm = 0.1\nM = -1\n",
+            &["bad.toml:4:", "parameters.M", "positive"],
+        ),
+        (
+            "scene = \"driven-hoop\"\n[parameters]\ng = nan\n",
+            &["bad.toml:3:", "parameters.g", "finite"],
+        ),
+        (
+            "scene = \"driven-hoop\"\n[parameters]\nM = \"heavy\"\n",
+            &["bad.toml:3:", "parameters.M", "must be a number"],
+        ),
+        (
+            "scene = \"driven-hoop\"\n[run]\ndt = 0.0\n",
+            &["bad.toml:3:", "run.dt", "positive"],
+        ),
+        (
+            "scene = \"driven-hoop\"\n[run]\nt_end = 1\ndt = 5\n",
+            &["bad.toml:4:", "run.dt", "larger than the horizon"],
+        ),
+        (
+            "scene = \"driven-hoop\"\n[run]\nintegrator = \"lgvi\"\n",
+            &["bad.toml:3:", "run.integrator", "cannot run"],
+        ),
+        (
+            "scene = \"driven-hoop\"\n[body]\nmesh = \"t-handle.obj\"\n",
+            &["bad.toml:2:", "no rigid body"],
+        ),
+    ];
+    for (text, expect) in cases {
+        fails(
+            &[("bad.toml", text)],
+            &["simulate", "bad.toml", "-o", "x.csv"],
+            expect,
+        );
+    }
+    fails(
+        &[],
+        &["simulate", "absent.toml", "-o", "x.csv"],
+        &["absent.toml", "cannot read"],
+    );
+}
+
+#[test]
+fn set_overrides_on_a_scene_file_are_validated_too() {
+    fails(
+        &[("spin.toml", WORKED_EXAMPLE)],
+        &["simulate", "spin.toml", "--set", "m=-0.2", "-o", "x.csv"],
+        &["--set m=-0.2", "`m` = -0.2"],
+    );
+}
