@@ -263,9 +263,9 @@ pub const VECTOR_INTEGRATORS: &[&str] = &[
     "rk4", "dp5", "dop853", "gauss2", "gauss4", "gauss6", "gauss8", "gauss10", "gauss12",
 ];
 
-/// Observer that turns states into rows, tracks the energy error at every step and hands every
-/// `every`-th row to the recorder.
-struct RowObserver<'a, F, const S: usize> {
+/// Observer that turns states (of any type) into rows, tracks the relative energy error at
+/// every step and hands every `every`-th row to the recorder.
+pub(crate) struct RowObserver<'a, S, F> {
     row: F,
     buffer: Vec<f64>,
     energy_column: usize,
@@ -275,12 +275,47 @@ struct RowObserver<'a, F, const S: usize> {
     count: u64,
     rows: u64,
     recorder: &'a mut dyn Recorder,
+    state: std::marker::PhantomData<fn(&S)>,
 }
 
-impl<F: FnMut(f64, &SVector<f64, S>, &mut [f64]), const S: usize> Observer<SVector<f64, S>>
-    for RowObserver<'_, F, S>
-{
-    fn observe(&mut self, t: f64, state: &SVector<f64, S>) -> Flow {
+impl<'a, S, F: FnMut(f64, &S, &mut [f64])> RowObserver<'a, S, F> {
+    /// `row(t, state, out)` fills `columns` values; `energy_column` holds the energy and the
+    /// column after it receives the relative energy error.
+    pub(crate) fn new(
+        columns: usize,
+        energy_column: usize,
+        every: u64,
+        row: F,
+        recorder: &'a mut dyn Recorder,
+    ) -> Self {
+        RowObserver {
+            row,
+            buffer: vec![0.0; columns],
+            energy_column,
+            energy0: None,
+            max_rel: 0.0,
+            every,
+            count: 0,
+            rows: 0,
+            recorder,
+            state: std::marker::PhantomData,
+        }
+    }
+
+    /// The run's summary.
+    pub(crate) fn summary(&self, t: f64, steps: u64, evaluations: u64) -> RunSummary {
+        RunSummary {
+            t,
+            steps,
+            evaluations,
+            max_energy_rel_err: self.max_rel,
+            rows: self.rows,
+        }
+    }
+}
+
+impl<S, F: FnMut(f64, &S, &mut [f64])> Observer<S> for RowObserver<'_, S, F> {
+    fn observe(&mut self, t: f64, state: &S) -> Flow {
         (self.row)(t, state, &mut self.buffer);
         let e = self.buffer[self.energy_column];
         let e0 = *self.energy0.get_or_insert(e);
@@ -326,17 +361,7 @@ where
 {
     let counted = tumble_integrators::Counted::new(ByRef(problem));
     let mut y = y0;
-    let mut observer = RowObserver {
-        row,
-        buffer: vec![0.0; columns],
-        energy_column,
-        energy0: None,
-        max_rel: 0.0,
-        every: resolved.every,
-        count: 0,
-        rows: 0,
-        recorder,
-    };
+    let mut observer = RowObserver::new(columns, energy_column, resolved.every, row, recorder);
     let driver = Driver::new(0.0, resolved.t_end)?;
     let unsupported = |name: &str| SceneError::UnsupportedIntegrator {
         scene: String::new(),
@@ -405,13 +430,7 @@ where
             }
         }
     };
-    Ok(RunSummary {
-        t: report.t,
-        steps: report.steps,
-        evaluations: counted.evaluations().rhs,
-        max_energy_rel_err: observer.max_rel,
-        rows: observer.rows,
-    })
+    Ok(observer.summary(report.t, report.steps, counted.evaluations().rhs))
 }
 
 /// A problem used through a reference (the integrators' traits are implemented for owned

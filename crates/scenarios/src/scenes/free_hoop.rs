@@ -36,7 +36,7 @@ use tumble_integrators::rigid::{
     CoupledLagrangian, CoupledLgvi, CoupledState, CoupledVectorField, KineticBlocks,
     LieVectorField, Scalar, coupled_energy, coupled_state_from_velocities, coupled_velocities,
 };
-use tumble_integrators::{Driver, Flow, Observer, Ode};
+use tumble_integrators::{Driver, Ode};
 use tumble_kinematics::EulerConvention;
 use tumble_kinematics::so3::{hat, rotation_to_quat};
 
@@ -44,7 +44,8 @@ use super::hoop::{HoopParams, tilt_from_normal};
 use crate::error::SceneError;
 use crate::params::{Domain, ParamSpec, Params};
 use crate::scene::{
-    Recorder, Resolved, RunOptions, RunSummary, Scene, SceneInfo, StepControl, run_vector,
+    Recorder, Resolved, RowObserver, RunOptions, RunSummary, Scene, SceneInfo, StepControl,
+    run_vector,
 };
 
 /// The free hoop on SO(3) × ℝ.
@@ -303,41 +304,6 @@ impl FreeHoopScene {
     }
 }
 
-/// Observer of coupled states: rows every `every` steps, energy error at every step.
-struct CoupledRows<'a> {
-    model: &'a FreeHoop,
-    buffer: [f64; 16],
-    energy0: Option<f64>,
-    max_rel: f64,
-    every: u64,
-    count: u64,
-    rows: u64,
-    recorder: &'a mut dyn Recorder,
-}
-
-impl Observer<CoupledState<1>> for CoupledRows<'_> {
-    fn observe(&mut self, t: f64, state: &CoupledState<1>) -> Flow {
-        write_row(self.model, t, state, &mut self.buffer);
-        let e = self.buffer[ENERGY_COLUMN];
-        let e0 = *self.energy0.get_or_insert(e);
-        let rel = if e0 != 0.0 {
-            ((e - e0) / e0).abs()
-        } else {
-            (e - e0).abs()
-        };
-        self.max_rel = self.max_rel.max(rel);
-        self.buffer[ENERGY_COLUMN + 1] = rel;
-        let flow = if self.count.is_multiple_of(self.every) {
-            self.rows += 1;
-            self.recorder.row(&self.buffer)
-        } else {
-            Flow::Continue
-        };
-        self.count += 1;
-        flow
-    }
-}
-
 /// Runs the free hoop with the coupled LGVI at a fixed step.
 fn run_lgvi(
     model: &FreeHoop,
@@ -354,16 +320,13 @@ fn run_lgvi(
     };
     let mut state = s0;
     let mut stepper = CoupledLgvi::<1>::new();
-    let mut observer = CoupledRows {
-        model,
-        buffer: [0.0; 16],
-        energy0: None,
-        max_rel: 0.0,
-        every: resolved.every,
-        count: 0,
-        rows: 0,
+    let mut observer = RowObserver::new(
+        FREE_HOOP.columns().len(),
+        ENERGY_COLUMN,
+        resolved.every,
+        |t, s: &CoupledState<1>, out: &mut [f64]| write_row(model, t, s, out),
         recorder,
-    };
+    );
     let report = Driver::new(0.0, resolved.t_end)?.run_fixed(
         &mut stepper,
         model,
@@ -371,13 +334,7 @@ fn run_lgvi(
         h,
         &mut observer,
     )?;
-    Ok(RunSummary {
-        t: report.t,
-        steps: report.steps,
-        evaluations: report.steps,
-        max_energy_rel_err: observer.max_rel,
-        rows: observer.rows,
-    })
+    Ok(observer.summary(report.t, report.steps, report.steps))
 }
 
 impl Scene for FreeHoopScene {
