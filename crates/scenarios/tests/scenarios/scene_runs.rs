@@ -21,8 +21,15 @@ fn every_builtin_scene_runs_on_its_defaults_and_conserves_its_energy() {
         assert!(rows.0.iter().all(|r| r.len() == columns.len()));
         assert_eq!(rows.0.first().unwrap()[0], 0.0);
         assert!((rows.0.last().unwrap()[0] - 2.0).abs() < 1e-12);
+        // Default integrators: Gauss s = 4 at h = 0.01 (hoops), DOP853 at 1e-10 (drop) conserve
+        // energy to ~1e-10 over 2 s; the free hoop's LGVI (order 2, h = 1e-3) to ~1e-6.
+        let bound = if info.default_integrator == "lgvi" {
+            1e-5
+        } else {
+            1e-9
+        };
         assert!(
-            summary.max_energy_rel_err < 1e-10,
+            summary.max_energy_rel_err < bound,
             "{}: {}",
             info.name,
             summary.max_energy_rel_err
