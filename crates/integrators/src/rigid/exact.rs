@@ -440,6 +440,25 @@ impl ExactFlow {
     pub fn spatial_momentum(&self) -> Vector3<f64> {
         self.l_space
     }
+
+    /// The period of the body angular momentum `m(t)` (the orientation does not return in
+    /// general): `4K(k)/λ` for an asymmetric body, `2π/|(1/I_s − 1/I⊥) m·e|` for an
+    /// axisymmetric one. `None` when `m` is constant (a sphere, a spin about a principal axis, an
+    /// axisymmetric body spinning about its axis) or on the separatrix (where the period is
+    /// infinite). For a spin near the intermediate axis the body flips every half period.
+    #[must_use]
+    pub fn momentum_period(&self) -> Option<f64> {
+        match &self.kind {
+            Kind::Sphere { .. } | Kind::PrincipalSpin { .. } => None,
+            Kind::Symmetric { rate, .. } => {
+                (*rate != 0.0).then(|| 2.0 * std::f64::consts::PI / rate.abs())
+            }
+            Kind::General(g) => g
+                .quarter_period
+                .is_finite()
+                .then(|| 4.0 * g.quarter_period / g.lambda),
+        }
+    }
 }
 
 impl General {

@@ -235,3 +235,41 @@ fn invalid_bodies_and_states_are_errors() {
             .is_err()
     );
 }
+
+#[test]
+fn momentum_period_returns_the_body_momentum_to_its_start() {
+    let body = moments(1.0, 2.0, 3.0);
+    for m0 in [
+        Vector3::new(0.2, 0.3, 1.0),
+        Vector3::new(1.0, 0.3, 0.2),
+        Vector3::new(1.0, 0.5, 1.8),
+    ] {
+        let flow = body.flow(&r0(), &m0).unwrap();
+        let period = flow
+            .momentum_period()
+            .expect("asymmetric off the separatrix");
+        let (_, m) = flow.at(period);
+        assert!((m - m0).norm() < 1e-13 * m0.norm(), "{m} vs {m0}");
+        // And not earlier: at half the period m differs.
+        let (_, m_half) = flow.at(0.5 * period);
+        assert!((m_half - m0).norm() > 1e-3 * m0.norm());
+    }
+    let sym = moments(2.0, 2.0, 3.0)
+        .flow(&r0(), &Vector3::new(0.2, 0.3, 1.0))
+        .unwrap();
+    let (_, m) = sym.at(sym.momentum_period().unwrap());
+    assert!((m - Vector3::new(0.2, 0.3, 1.0)).norm() < 1e-14);
+    assert!(
+        moments(2.0, 2.0, 2.0)
+            .flow(&r0(), &Vector3::z())
+            .unwrap()
+            .momentum_period()
+            .is_none()
+    );
+    assert!(
+        body.flow(&r0(), &Vector3::new(0.0, 0.0, 1.0))
+            .unwrap()
+            .momentum_period()
+            .is_none()
+    );
+}
