@@ -85,7 +85,7 @@
 use nalgebra::{Const, Matrix3, RealField, SMatrix, SVector, U1, Vector3};
 use num_dual::{DualVec, HyperDualVec};
 
-use tumble_kinematics::so3::{cayley, hat};
+use tumble_kinematics::so3::hat;
 
 use crate::error::{Error, check_step};
 use crate::rigid::lgvi::MAX_NEWTON_ITERATIONS;
@@ -325,12 +325,13 @@ pub fn coupled_energy<L: CoupledLagrangian<N> + ?Sized, const N: usize>(
 ///
 /// Implements [`Stepper<L>`] on [`CoupledState<N>`]. The Newton unknowns are `w` and the
 /// increment `d = q_{k+1} − q_k` (not `q_{k+1}`: `v = d/h` then carries no cancellation when
-/// `q` is large, e.g. an angle that keeps winding up), and `q ← q + d` is summed with Kahan
-/// compensation carried between steps.
+/// `q` is large, e.g. an angle that keeps winding up); `q ← q + d` and `R ← R + R G`
+/// (`cay(w) = 𝟙 + G`) are summed with Kahan compensation carried between steps.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct CoupledLgvi<const N: usize> {
     max_iterations: usize,
     carry: SVector<f64, N>,
+    carry_rotation: Matrix3<f64>,
     last: Option<(f64, CoupledState<N>)>,
 }
 
@@ -339,6 +340,7 @@ impl<const N: usize> Default for CoupledLgvi<N> {
         Self {
             max_iterations: MAX_NEWTON_ITERATIONS,
             carry: SVector::zeros(),
+            carry_rotation: Matrix3::zeros(),
             last: None,
         }
     }
@@ -444,6 +446,7 @@ impl<const N: usize, L: CoupledLagrangian<N> + ?Sized> Stepper<L> for CoupledLgv
             .is_some_and(|(t1, s1)| crate::state::same_time(*t1, t) && s1 == state);
         if !continues {
             self.carry = SVector::zeros();
+            self.carry_rotation = Matrix3::zeros();
         }
         let failure =
             |iterations: usize, increment: f64, state: &CoupledState<N>| Error::NoConvergence {
@@ -507,7 +510,13 @@ impl<const N: usize, L: CoupledLagrangian<N> + ?Sized> Stepper<L> for CoupledLgv
         for i in 0..N {
             crate::state::compensated_add(&mut q1[i], d[i], &mut self.carry[i]);
         }
-        let r1 = r0 * cayley(&w).matrix();
+        // R₁ = R₀ cay(w) = R₀ + R₀ G with G = 4 (hat w + ½ hat w²)/(4 + |w|²): applied as a
+        // compensated increment so that its rounding does not repeat identically from step to
+        // step.
+        let wh = hat(&w);
+        let g = (wh + wh * wh * 0.5) * (4.0 / (4.0 + w.norm_squared()));
+        let mut r1 = r0;
+        crate::rigid::state::compensated_add_all(&mut r1, &(r0 * g), &mut self.carry_rotation);
         // Momenta at k + 1: T's partial derivatives at the solution (T_q by AD).
         let qbar = SVector::<Grad<N>, N>::from_fn(|i, _| grad_var::<N>(q0[i] + 0.5 * d[i], i));
         let v = (d / h).map(Grad::<N>::from);
@@ -526,8 +535,10 @@ impl<const N: usize, L: CoupledLagrangian<N> + ?Sized> Stepper<L> for CoupledLgv
     }
 
     fn reset(&mut self) {
-        self.carry = SVector::zeros();
-        self.last = None;
+        *self = Self {
+            max_iterations: self.max_iterations,
+            ..Self::default()
+        };
     }
 }
 

@@ -87,19 +87,22 @@ impl Dmv {
     }
 }
 
-/// The rotation of the unit quaternion `(e₀, e)`: `𝟙 + 2e₀ hat(e) + 2 hat(e)²`.
-fn quaternion_rotation(e0: f64, e: &Vector3<f64>) -> Matrix3<f64> {
+/// `F − 𝟙 = 2e₀ hat(e) + 2 hat(e)²` for the unit quaternion `(e₀, e)`, without the identity: the
+/// update `P ← P + P (F − 𝟙)` (compensated) then rounds once per entry of `P`, in a pattern that
+/// changes with `P`, instead of rounding `1 − 2(e_y² + e_z²)` the same way at every step of a
+/// steady rotation, which would make `‖PᵀP − 𝟙‖` grow linearly.
+fn quaternion_increment(e0: f64, e: &Vector3<f64>) -> Matrix3<f64> {
     let (x, y, z) = (e.x, e.y, e.z);
     Matrix3::new(
-        1.0 - 2.0 * (y * y + z * z),
+        -2.0 * (y * y + z * z),
         2.0 * (x * y - e0 * z),
         2.0 * (x * z + e0 * y),
         2.0 * (x * y + e0 * z),
-        1.0 - 2.0 * (x * x + z * z),
+        -2.0 * (x * x + z * z),
         2.0 * (y * z - e0 * x),
         2.0 * (x * z - e0 * y),
         2.0 * (y * z + e0 * x),
-        1.0 - 2.0 * (x * x + y * y),
+        -2.0 * (x * x + y * y),
     )
 }
 
@@ -118,7 +121,8 @@ impl Stepper<FreeRigidBody> for Dmv {
         }
         let i = body.principal_moments();
         let q = *body.principal_axes().matrix();
-        let (p, m) = self.frame.enter(&q, t, state);
+        let mut x = self.frame.enter(&q, t, state);
+        let m = x.mu;
         let half = m * (0.5 * h);
         let mut e = half.component_div(&i);
         let mut previous = f64::INFINITY;
@@ -158,10 +162,12 @@ impl Stepper<FreeRigidBody> for Dmv {
                 state: crate::state::State::to_vec(state),
             });
         }
-        let f = quaternion_rotation(e0, &e);
-        // In the principal frame P_{k+1} = P_k F, μ_{k+1} = Fᵀ μ_k; back to the body frame:
-        // R = P Qᵀ, m = Q μ.
-        self.frame.leave(&q, t + h, p * f, f.transpose() * m, state);
+        let g = quaternion_increment(e0, &e);
+        // In the principal frame P_{k+1} = P_k F, μ_{k+1} = Fᵀ μ_k (as increments, F = 𝟙 + G);
+        // back to the body frame: R = P Qᵀ, m = Q μ.
+        let dp = x.p * g;
+        x.add(&dp, &(g.transpose() * m));
+        self.frame.leave(&q, t + h, x, state);
         Ok(())
     }
 

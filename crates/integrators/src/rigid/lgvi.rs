@@ -53,11 +53,11 @@
 
 use nalgebra::{Matrix3, Vector3};
 
-use tumble_kinematics::so3::{cayley, hat};
+use tumble_kinematics::so3::hat;
 
 use crate::error::{Error, check_step};
 use crate::rigid::problem::RigidBody;
-use crate::rigid::state::RigidBodyState;
+use crate::rigid::state::{RigidBodyState, RigidCarry};
 use crate::stepper::Stepper;
 
 /// Default iteration limit of the Newton solves.
@@ -65,18 +65,37 @@ pub const MAX_NEWTON_ITERATIONS: usize = 30;
 
 /// The Lee–Leok–McClamroch Lie group variational integrator (order 2, symplectic, symmetric).
 ///
-/// Implements [`Stepper<B>`] for every [`RigidBody`] `B`, on [`RigidBodyState`].
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// Implements [`Stepper<B>`] for every [`RigidBody`] `B`, on [`RigidBodyState`]. The updates
+/// `R ← R + R G`, `Π ← Π + ΔΠ` (with `F = 𝟙 + G`) are summed with Kahan compensation carried
+/// between steps (reset when the caller changes the state).
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Lgvi {
     /// Newton iterations allowed per step before [`Error::NoConvergence`].
     pub max_iterations: usize,
+    carry: RigidCarry,
 }
 
 impl Default for Lgvi {
     fn default() -> Self {
         Self {
             max_iterations: MAX_NEWTON_ITERATIONS,
+            carry: RigidCarry::default(),
         }
+    }
+}
+
+impl Lgvi {
+    /// The default stepper (at most [`MAX_NEWTON_ITERATIONS`] Newton iterations per step).
+    #[must_use]
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// The same stepper allowing `n` Newton iterations per step.
+    #[must_use]
+    pub fn with_max_iterations(mut self, n: usize) -> Self {
+        self.max_iterations = n;
+        self
     }
 }
 
@@ -160,16 +179,27 @@ impl<B: RigidBody + ?Sized> Stepper<B> for Lgvi {
                 state: crate::state::State::to_vec(state),
             }
         })?;
-        let f = *cayley(&(solved.f * 2.0)).matrix();
-        let rotation = state.rotation * f;
-        let ft = f.transpose();
-        state.momentum = if torque_free {
-            ft * state.momentum
+        // F = 𝟙 + G with G = 2 (hat f + hat f²)/(1 + |f|²), applied as increments: R + R G
+        // and Π + Gᵀ(…) round once per entry, in a pattern that changes with the state (R F would
+        // round the diagonal 1 − O(|f|²) of F the same way at every step of a steady rotation and
+        // make ‖RᵀR − 𝟙‖ grow linearly), and the sums are compensated.
+        let fh = hat(&solved.f);
+        let g = (fh + fh * fh) * (2.0 / (1.0 + solved.f.norm_squared()));
+        let d_rotation = state.rotation * g;
+        let gt = g.transpose();
+        let d_momentum = if torque_free {
+            gt * state.momentum
         } else {
-            let m1 = problem.torque(&rotation);
-            ft * (state.momentum + m0 * (0.5 * h)) + m1 * (0.5 * h)
+            let m1 = problem.torque(&(state.rotation + d_rotation));
+            let half_kick = m0 * (0.5 * h);
+            half_kick + gt * (state.momentum + half_kick) + m1 * (0.5 * h)
         };
-        state.rotation = rotation;
+        self.carry.prepare(t, state);
+        self.carry.apply(t + h, state, &d_rotation, &d_momentum);
         Ok(())
+    }
+
+    fn reset(&mut self) {
+        self.carry.reset();
     }
 }

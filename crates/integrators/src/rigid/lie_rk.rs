@@ -44,13 +44,29 @@
 
 use nalgebra::{Matrix3, SVector, Vector3};
 
-use tumble_kinematics::so3::{dexpinv, exp};
+use tumble_kinematics::so3::{dexpinv, exp_quat, hat};
 
 use crate::error::{Error, check_step};
 use crate::rigid::problem::LieVectorField;
 use crate::rigid::state::GroupState;
-use crate::state::compensated_add;
+use crate::rigid::state::compensated_add_all;
 use crate::stepper::Stepper;
+
+/// `R (exp(hat θ) − 𝟙)`, with `exp(hat θ) − 𝟙 = 2w hat(v) + 2 hat(v)²` from the unit quaternion
+/// `(w, v)` of `θ`. `R exp(hat θ)` is then formed as `R + R (exp(hat θ) − 𝟙)`, which rounds once
+/// per entry of `R` in a pattern that changes with `R`, where the product would round the
+/// diagonal `1 − O(|θ|²)` of the exponential the same way at every step of a steady rotation and
+/// make `‖RᵀR − 𝟙‖` grow linearly.
+pub(crate) fn exp_increment(r: &Matrix3<f64>, theta: &Vector3<f64>) -> Matrix3<f64> {
+    let q = exp_quat(theta);
+    let v = hat(&q.vector().into_owned());
+    r * ((v * q.w + v * v) * 2.0)
+}
+
+/// `R exp(hat θ)` as `R + R (exp(hat θ) − 𝟙)` (see [`exp_increment`]).
+fn times_exp(r: &Matrix3<f64>, theta: &Vector3<f64>) -> Matrix3<f64> {
+    r + exp_increment(r, theta)
+}
 
 /// Coefficients `(c, A, b)` of an explicit `S`-stage method used on a Lie group.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -112,38 +128,45 @@ pub const CROUCH_GROSSMAN3: LieRkTableau<3> = LieRkTableau {
     b: [13.0 / 51.0, -2.0 / 3.0, 24.0 / 17.0],
 };
 
-/// Carried Kahan compensation of the vector part, valid only while the state is what the
-/// stepper last produced.
+/// Carried Kahan compensation of the updates `R ← R + ΔR`, `y ← y + Δy`, valid only while the
+/// state is what the stepper last produced.
 #[derive(Debug, Clone, Copy)]
 struct Compensation<const N: usize> {
-    carry: SVector<f64, N>,
-    last: Option<(f64, SVector<f64, N>)>,
+    rotation: Matrix3<f64>,
+    vector: SVector<f64, N>,
+    last: Option<(f64, GroupState<N>)>,
 }
 
 impl<const N: usize> Compensation<N> {
     fn new() -> Self {
         Self {
-            carry: SVector::zeros(),
+            rotation: Matrix3::zeros(),
+            vector: SVector::zeros(),
             last: None,
         }
     }
 
-    /// Resets the carry unless `(t, y)` is the end of the last step.
-    fn prepare(&mut self, t: f64, y: &SVector<f64, N>) {
+    /// Resets the carries unless `(t, state)` is the end of the last step.
+    fn prepare(&mut self, t: f64, state: &GroupState<N>) {
         let continues = self
             .last
             .as_ref()
-            .is_some_and(|(t1, y1)| crate::state::same_time(*t1, t) && y1 == y);
+            .is_some_and(|(t1, s1)| crate::state::same_time(*t1, t) && s1 == state);
         if !continues {
-            self.carry = SVector::zeros();
+            *self = Self::new();
         }
     }
 
-    fn update(&mut self, t1: f64, y: &mut SVector<f64, N>, delta: &SVector<f64, N>) {
-        for i in 0..N {
-            compensated_add(&mut y[i], delta[i], &mut self.carry[i]);
-        }
-        self.last = Some((t1, *y));
+    fn update(
+        &mut self,
+        t1: f64,
+        state: &mut GroupState<N>,
+        d_rotation: &Matrix3<f64>,
+        d_vector: &SVector<f64, N>,
+    ) {
+        compensated_add_all(&mut state.rotation, d_rotation, &mut self.rotation);
+        compensated_add_all(&mut state.vector, d_vector, &mut self.vector);
+        self.last = Some((t1, *state));
     }
 }
 
@@ -196,7 +219,7 @@ impl<const S: usize, const N: usize, F: LieVectorField<N> + ?Sized> Stepper<F> f
         if !h.is_finite() {
             return check_step(h);
         }
-        self.compensation.prepare(t, &state.vector);
+        self.compensation.prepare(t, state);
         let tab = self.table;
         let r0 = state.rotation;
         let y0 = state.vector;
@@ -215,7 +238,7 @@ impl<const S: usize, const N: usize, F: LieVectorField<N> + ?Sized> Stepper<F> f
             let (ri, corrected) = if i == 0 {
                 (r0, None)
             } else {
-                (r0 * exp(&theta).matrix(), Some(theta))
+                (times_exp(&r0, &theta), Some(theta))
             };
             let (xi, fi) = problem.eval(t + tab.c[i] * h, &ri, &y);
             k[i] = match corrected {
@@ -230,8 +253,8 @@ impl<const S: usize, const N: usize, F: LieVectorField<N> + ?Sized> Stepper<F> f
             theta += k[i] * (h * tab.b[i]);
             delta += f[i] * (h * tab.b[i]);
         }
-        state.rotation = r0 * exp(&theta).matrix();
-        self.compensation.update(t + h, &mut state.vector, &delta);
+        let d_rotation = exp_increment(&r0, &theta);
+        self.compensation.update(t + h, state, &d_rotation, &delta);
         Ok(())
     }
 
@@ -269,7 +292,7 @@ fn frozen_flows(r0: &Matrix3<f64>, xi: &[Vector3<f64>], weights: &[f64], h: f64)
     let mut r = *r0;
     for (x, &w) in xi.iter().zip(weights) {
         if w != 0.0 {
-            r *= exp(&(x * (h * w))).matrix();
+            r = times_exp(&r, &(x * (h * w)));
         }
     }
     r
@@ -290,7 +313,7 @@ impl<const S: usize, const N: usize, F: LieVectorField<N> + ?Sized> Stepper<F>
         if !h.is_finite() {
             return check_step(h);
         }
-        self.compensation.prepare(t, &state.vector);
+        self.compensation.prepare(t, state);
         let tab = self.table;
         let r0 = state.rotation;
         let y0 = state.vector;
@@ -313,8 +336,8 @@ impl<const S: usize, const N: usize, F: LieVectorField<N> + ?Sized> Stepper<F>
         for i in 0..S {
             delta += f[i] * (h * tab.b[i]);
         }
-        state.rotation = frozen_flows(&r0, &xi, &tab.b, h);
-        self.compensation.update(t + h, &mut state.vector, &delta);
+        let d_rotation = frozen_flows(&r0, &xi, &tab.b, h) - r0;
+        self.compensation.update(t + h, state, &d_rotation, &delta);
         Ok(())
     }
 

@@ -32,7 +32,9 @@
 //! rounding pattern, and the error would grow linearly in the number of steps. Instead each
 //! stepper keeps the principal-frame state of its last output and, when it is called again with
 //! exactly that output (the normal case, also inside a composition), continues from it; a state
-//! changed by the caller is converted afresh. The round-off then grows like a random walk.
+//! changed by the caller is converted afresh. Every rotation and kick is applied as an increment
+//! (`x + ((c − 1)x + s y)`, `c − 1 = −2 sin²(θ/2)`) summed with Kahan compensation carried in
+//! the same cache, so the round-off of long runs stays at the level of a few roundings.
 //!
 //! # Exact free flow and kicks ([`ExactSplitting`], `split-exact2`)
 //!
@@ -60,6 +62,7 @@
 
 use nalgebra::{Matrix3, Rotation3, Vector3};
 
+use crate::rigid::state::compensated_add_all;
 use crate::state::same_time;
 
 use crate::composition::Composition;
@@ -70,7 +73,38 @@ use crate::rigid::state::RigidBodyState;
 use crate::stepper::Stepper;
 use crate::tables::composition::{KAHAN_LI6, KAHAN_LI8, MCLACHLAN4};
 
-/// The principal-frame state `(P, μ) = (R Q, Qᵀ m)` of the last output of a stepper.
+/// A state in the principal frame, `(P, μ) = (R Q, Qᵀ m)`, with the Kahan carries of its
+/// increments.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub(crate) struct Principal {
+    pub(crate) p: Matrix3<f64>,
+    pub(crate) mu: Vector3<f64>,
+    carry_p: Matrix3<f64>,
+    carry_mu: Vector3<f64>,
+}
+
+impl Principal {
+    fn new(p: Matrix3<f64>, mu: Vector3<f64>) -> Self {
+        Self {
+            p,
+            mu,
+            ..Self::default()
+        }
+    }
+
+    /// `P ← P + ΔP`, `μ ← μ + Δμ`, compensated.
+    pub(crate) fn add(&mut self, dp: &Matrix3<f64>, dmu: &Vector3<f64>) {
+        compensated_add_all(&mut self.p, dp, &mut self.carry_p);
+        compensated_add_all(&mut self.mu, dmu, &mut self.carry_mu);
+    }
+
+    /// Replaces the state (a closed-form flow, not an increment): the carries restart.
+    fn set(&mut self, p: Matrix3<f64>, mu: Vector3<f64>) {
+        *self = Self::new(p, mu);
+    }
+}
+
+/// The principal-frame state of the last output of a stepper (see the module doc).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub(crate) struct PrincipalFrame {
     last: Option<Cached>,
@@ -81,22 +115,16 @@ struct Cached {
     t: f64,
     axes: Matrix3<f64>,
     output: RigidBodyState,
-    p: Matrix3<f64>,
-    mu: Vector3<f64>,
+    state: Principal,
 }
 
 impl PrincipalFrame {
-    /// `(P, μ)` of `state` at `t`: the cached one when `(t, state)` is the last output for the
-    /// same axes `q`, else `(R Q, Qᵀ m)`.
-    pub(crate) fn enter(
-        &self,
-        q: &Matrix3<f64>,
-        t: f64,
-        state: &RigidBodyState,
-    ) -> (Matrix3<f64>, Vector3<f64>) {
+    /// The principal-frame state of `state` at `t`: the cached one (with its carries) when
+    /// `(t, state)` is the last output for the same axes `q`, else `(R Q, Qᵀ m)`.
+    pub(crate) fn enter(&self, q: &Matrix3<f64>, t: f64, state: &RigidBodyState) -> Principal {
         match &self.last {
-            Some(c) if c.axes == *q && c.output == *state && same_time(c.t, t) => (c.p, c.mu),
-            _ => (state.rotation * q, q.transpose() * state.momentum),
+            Some(c) if c.axes == *q && c.output == *state && same_time(c.t, t) => c.state,
+            _ => Principal::new(state.rotation * q, q.transpose() * state.momentum),
         }
     }
 
@@ -105,18 +133,16 @@ impl PrincipalFrame {
         &mut self,
         q: &Matrix3<f64>,
         t: f64,
-        p: Matrix3<f64>,
-        mu: Vector3<f64>,
+        x: Principal,
         state: &mut RigidBodyState,
     ) {
-        state.rotation = p * q.transpose();
-        state.momentum = q * mu;
+        state.rotation = x.p * q.transpose();
+        state.momentum = q * x.mu;
         self.last = Some(Cached {
             t,
             axes: *q,
             output: *state,
-            p,
-            mu,
+            state: x,
         });
     }
 
@@ -162,42 +188,40 @@ pub fn split8() -> Composition<PrincipalAxisSplitting> {
 
 /// The exact flow of `Tᵢ = μᵢ²/(2Iᵢ)` over time `tau`, in the principal frame.
 #[inline]
-fn principal_rotation(
-    axis: usize,
-    tau: f64,
-    moments: &Vector3<f64>,
-    mu: &mut Vector3<f64>,
-    p: &mut Matrix3<f64>,
-) {
+fn principal_rotation(axis: usize, tau: f64, moments: &Vector3<f64>, x: &mut Principal) {
     let (j, k) = match axis {
         0 => (1, 2),
         1 => (2, 0),
         _ => (0, 1),
     };
-    let theta = tau * mu[axis] / moments[axis];
-    let (s, c) = theta.sin_cos();
+    let theta = tau * x.mu[axis] / moments[axis];
+    let s = theta.sin();
+    // c − 1 = −2 sin²(θ/2): the rotation is applied as compensated increments
+    // x ← x + ((c − 1)x + s y), which round once per entry in a pattern that changes with the
+    // state, instead of rounding c ≈ 1 the same way at every step of a steady rotation (a linear
+    // drift of ‖PᵀP − 𝟙‖).
+    let half = (0.5 * theta).sin();
+    let cm1 = -2.0 * half * half;
     // exp(θ hat eᵢ) maps e_j ↦ c e_j + s e_k and e_k ↦ −s e_j + c e_k.
-    let (mj, mk) = (mu[j], mu[k]);
-    mu[j] = c * mj + s * mk;
-    mu[k] = -s * mj + c * mk;
+    let mut dp = Matrix3::zeros();
+    let mut dmu = Vector3::zeros();
+    let (mj, mk) = (x.mu[j], x.mu[k]);
+    dmu[j] = cm1 * mj + s * mk;
+    dmu[k] = cm1 * mk - s * mj;
     for row in 0..3 {
-        let (pj, pk) = (p[(row, j)], p[(row, k)]);
-        p[(row, j)] = c * pj + s * pk;
-        p[(row, k)] = -s * pj + c * pk;
+        let (pj, pk) = (x.p[(row, j)], x.p[(row, k)]);
+        dp[(row, j)] = cm1 * pj + s * pk;
+        dp[(row, k)] = cm1 * pk - s * pj;
     }
+    x.add(&dp, &dmu);
 }
 
 /// `μ ← μ + τ Qᵀ M(P Qᵀ)`: the kick of the potential over `tau`, in the principal frame.
 #[inline]
-fn kick<B: RigidBody + ?Sized>(
-    problem: &B,
-    q: &Matrix3<f64>,
-    p: &Matrix3<f64>,
-    mu: &mut Vector3<f64>,
-    tau: f64,
-) {
-    let rotation = p * q.transpose();
-    *mu += q.transpose() * (problem.torque(&rotation) * tau);
+fn kick<B: RigidBody + ?Sized>(problem: &B, q: &Matrix3<f64>, x: &mut Principal, tau: f64) {
+    let rotation = x.p * q.transpose();
+    let dmu = q.transpose() * (problem.torque(&rotation) * tau);
+    x.add(&Matrix3::zeros(), &dmu);
 }
 
 impl<B: RigidBody + ?Sized> Stepper<B> for PrincipalAxisSplitting {
@@ -216,21 +240,21 @@ impl<B: RigidBody + ?Sized> Stepper<B> for PrincipalAxisSplitting {
         let body = problem.body();
         let moments = body.principal_moments();
         let q = *body.principal_axes().matrix();
-        let (mut p, mut mu) = self.frame.enter(&q, t, state);
+        let mut x = self.frame.enter(&q, t, state);
         let kicks = !problem.is_torque_free();
         let half = 0.5 * h;
         if kicks {
-            kick(problem, &q, &p, &mut mu, half);
+            kick(problem, &q, &mut x, half);
         }
-        principal_rotation(0, half, &moments, &mut mu, &mut p);
-        principal_rotation(1, half, &moments, &mut mu, &mut p);
-        principal_rotation(2, h, &moments, &mut mu, &mut p);
-        principal_rotation(1, half, &moments, &mut mu, &mut p);
-        principal_rotation(0, half, &moments, &mut mu, &mut p);
+        principal_rotation(0, half, &moments, &mut x);
+        principal_rotation(1, half, &moments, &mut x);
+        principal_rotation(2, h, &moments, &mut x);
+        principal_rotation(1, half, &moments, &mut x);
+        principal_rotation(0, half, &moments, &mut x);
         if kicks {
-            kick(problem, &q, &p, &mut mu, half);
+            kick(problem, &q, &mut x, half);
         }
-        self.frame.leave(&q, t + h, p, mu, state);
+        self.frame.leave(&q, t + h, x, state);
         Ok(())
     }
 
@@ -248,15 +272,15 @@ struct DiagonalFlow {
 }
 
 impl DiagonalFlow {
-    /// Advances `(P, μ)` by the exact free flow over `h`.
+    /// Advances `x = (P, μ)` by the exact free flow over `h`.
     fn advance(
         &mut self,
         moments: &Vector3<f64>,
         t: f64,
         h: f64,
-        p: &mut Matrix3<f64>,
-        mu: &mut Vector3<f64>,
+        x: &mut Principal,
     ) -> Result<(), Error> {
+        let (p, mu) = (&x.p, &x.mu);
         let failure = |p: &Matrix3<f64>, mu: &Vector3<f64>| Error::NonFinite {
             t,
             h,
@@ -280,8 +304,7 @@ impl DiagonalFlow {
         // linearly: restarted every step with the same h, the closed form multiplies by nearly
         // the same rotation matrix every step and accumulates that matrix's rounding coherently.
         let r = r.into_inner();
-        *p = r * (Matrix3::identity() * 3.0 - r.transpose() * r) * 0.5;
-        *mu = m;
+        x.set(r * (Matrix3::identity() * 3.0 - r.transpose() * r) * 0.5, m);
         Ok(())
     }
 }
@@ -319,16 +342,16 @@ impl<B: RigidBody + ?Sized> Stepper<B> for ExactSplitting {
         let body = problem.body();
         let moments = body.principal_moments();
         let q = *body.principal_axes().matrix();
-        let (mut p, mut mu) = self.frame.enter(&q, t, state);
+        let mut x = self.frame.enter(&q, t, state);
         let kicks = !problem.is_torque_free();
         if kicks {
-            kick(problem, &q, &p, &mut mu, 0.5 * h);
+            kick(problem, &q, &mut x, 0.5 * h);
         }
-        self.flow.advance(&moments, t, h, &mut p, &mut mu)?;
+        self.flow.advance(&moments, t, h, &mut x)?;
         if kicks {
-            kick(problem, &q, &p, &mut mu, 0.5 * h);
+            kick(problem, &q, &mut x, 0.5 * h);
         }
-        self.frame.leave(&q, t + h, p, mu, state);
+        self.frame.leave(&q, t + h, x, state);
         Ok(())
     }
 
@@ -369,10 +392,9 @@ impl Stepper<FreeRigidBody> for ExactStepper {
             return check_step(h);
         }
         let q = *body.principal_axes().matrix();
-        let (mut p, mut mu) = self.frame.enter(&q, t, state);
-        self.flow
-            .advance(&body.principal_moments(), t, h, &mut p, &mut mu)?;
-        self.frame.leave(&q, t + h, p, mu, state);
+        let mut x = self.frame.enter(&q, t, state);
+        self.flow.advance(&body.principal_moments(), t, h, &mut x)?;
+        self.frame.leave(&q, t + h, x, state);
         Ok(())
     }
 

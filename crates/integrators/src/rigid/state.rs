@@ -18,7 +18,7 @@
 
 use nalgebra::{Matrix3, Rotation3, SVector, Vector3};
 
-use crate::state::State;
+use crate::state::{State, compensated_add, same_time};
 
 /// Orientation and body angular momentum of a rigid body.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -225,5 +225,56 @@ impl<const N: usize> State for CoupledState<N> {
             .chain(self.p.iter())
             .copied()
             .collect()
+    }
+}
+
+/// `x ← x + δ` entry by entry with Kahan compensation (`carry` holds the rounding errors).
+#[inline]
+pub(crate) fn compensated_add_all<const R: usize, const C: usize>(
+    x: &mut nalgebra::SMatrix<f64, R, C>,
+    delta: &nalgebra::SMatrix<f64, R, C>,
+    carry: &mut nalgebra::SMatrix<f64, R, C>,
+) {
+    for i in 0..R * C {
+        compensated_add(&mut x[i], delta[i], &mut carry[i]);
+    }
+}
+
+/// The Kahan carries of a [`RigidBodyState`] updated by increments, valid while the state is
+/// what the stepper last produced (else they restart at zero).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub(crate) struct RigidCarry {
+    rotation: Matrix3<f64>,
+    momentum: Vector3<f64>,
+    last: Option<(f64, RigidBodyState)>,
+}
+
+impl RigidCarry {
+    /// Forgets the carries unless `(t, state)` is the last output.
+    pub(crate) fn prepare(&mut self, t: f64, state: &RigidBodyState) {
+        let continues = self
+            .last
+            .as_ref()
+            .is_some_and(|(t1, s1)| same_time(*t1, t) && s1 == state);
+        if !continues {
+            *self = Self::default();
+        }
+    }
+
+    /// `R ← R + ΔR`, `m ← m + Δm` (compensated); remembers the result as the output at `t`.
+    pub(crate) fn apply(
+        &mut self,
+        t: f64,
+        state: &mut RigidBodyState,
+        d_rotation: &Matrix3<f64>,
+        d_momentum: &Vector3<f64>,
+    ) {
+        compensated_add_all(&mut state.rotation, d_rotation, &mut self.rotation);
+        compensated_add_all(&mut state.momentum, d_momentum, &mut self.momentum);
+        self.last = Some((t, *state));
+    }
+
+    pub(crate) fn reset(&mut self) {
+        *self = Self::default();
     }
 }

@@ -152,7 +152,8 @@ fn registry_lists_every_rigid_body_method_with_its_properties() {
 fn non_convergence_is_a_typed_error_with_time_and_state() {
     let body = asymmetric_body();
     let s0 = initial_state();
-    let err = Lgvi { max_iterations: 1 }
+    let err = Lgvi::new()
+        .with_max_iterations(1)
         .step(&body, 1.5, &mut s0.clone(), 0.1)
         .unwrap_err();
     match err {
