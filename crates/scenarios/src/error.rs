@@ -144,6 +144,9 @@ pub enum SceneError {
     /// The model failed (a singular mass matrix, a non-finite state).
     #[error(transparent)]
     Model(#[from] ModelError),
+    /// Mass properties could not be computed (a body's mesh or primitive).
+    #[error(transparent)]
+    Inertia(#[from] tumble_inertia::InertiaError),
     /// The integrator failed (non-convergence, non-finite state), with time and state.
     #[error("integration failed: {0}")]
     Integration(#[from] tumble_integrators::Error),

@@ -4,6 +4,7 @@
 pub mod coriolis;
 pub mod free_hoop;
 pub mod hoop;
+pub mod rigid;
 pub mod top;
 
 use crate::error::SceneError;
@@ -16,6 +17,9 @@ pub fn builtin() -> &'static [&'static dyn Scene] {
         &hoop::DrivenHoopScene,
         &hoop::SpinningHoopScene,
         &free_hoop::FreeHoopScene,
+        &rigid::FreeBodyScene,
+        &rigid::DzhanibekovScene,
+        &rigid::HeavyTopScene,
         &coriolis::CoriolisDropScene,
     ]
 }

@@ -9,5 +9,6 @@ mod free_hoop;
 mod free_hoop_euler;
 mod heavy_top_euler;
 mod lagrangian_ad;
+mod rigid_scenes;
 mod scene_runs;
 mod spinning_hoop;

@@ -1,0 +1,550 @@
+//! Rigid bodies on SO(3): `free-body`, `dzhanibekov` and `heavy-top`.
+//!
+//! # Model
+//!
+//! State `(R, m)`: the orientation (body → lab) and the body angular momentum about the centre
+//! of mass (free bodies) or the fixed point (the top); `Ṙ = R hat Ω`, `ṁ = m × Ω + M(R)`,
+//! `Ω = J⁻¹ m`, with `J` the body-frame inertia (not necessarily diagonal) and `M` the moment of
+//! the potential (zero for free bodies; `M = w (Rᵀ e₃) × ρ` for the heavy top).
+//!
+//! # Scenes
+//!
+//! * `free-body`: a torque-free asymmetric body. Oracle: the exact elliptic-function solution
+//!   ([`tumble_integrators::rigid::ExactFlow`]); the `exact_err` column is the distance of each
+//!   row from it (`max(max|ΔR|, |Δm|/|m|)`). Energy and `L` conserved.
+//! * `dzhanibekov`: the T-handle (inertia from the inertia crate's mesh-checked composition of two
+//!   boxes) spun about its intermediate axis with a small perturbation: it flips periodically;
+//!   the flip period is half the exact solution's period.
+//! * `heavy-top`: the Lagrange top; defaults are Simo & Wong's hard case `J = diag(5, 5, 1)`,
+//!   `Mgl = 20`, `Λ₀ = exp(hat(0.05, 0, 0))`, `W₀ = (0, 0, 50)` (body angular velocity),
+//!   `H ≈ 1269.975`, `t ∈ [0, 10]`. Energy, `L_z` and (symmetric top) `L·e₃` conserved.
+//!
+//! # Output
+//!
+//! Coordinates `qw, qx, qy, qz` (unit quaternion of `R`, `w ≥ 0`), rates `omega_x, omega_y,
+//! omega_z` (body angular velocity), diagnostics `energy, energy_rel_err, Lx, Ly, Lz` (lab) and,
+//! for free bodies, `exact_err`.
+//!
+//! # References
+//! * J. C. Simo, K. K. Wong, "Unconditionally stable algorithms for rigid body dynamics that
+//!   exactly preserve energy and momentum", Int. J. Numer. Methods Eng. 31 (1991) 19–52.
+
+use nalgebra::{Matrix3, Rotation3, SVector, Vector3};
+use tumble_inertia::{MassSpec, THandle};
+use tumble_integrators::rigid::{
+    Dmv, EulerEquations, ExactFlow, ExactSplitting, ExactStepper, FreeRigidBody, GroupState,
+    HeavyTop, Lgvi, LieVectorField, PrincipalAxisSplitting, RigidBody, RigidBodyState, cg3, rkmk4,
+    split4, split6, split8,
+};
+use tumble_integrators::{Driver, Ode};
+use tumble_kinematics::so3::{exp, hat, rotation_to_quat};
+
+use crate::error::SceneError;
+use crate::params::{Domain, ParamSpec, Params};
+use crate::scene::{
+    Recorder, Resolved, RowObserver, RunOptions, RunSummary, Scene, SceneInfo, StepControl,
+    VECTOR_INTEGRATORS, run_vector,
+};
+
+/// Flattened state `(R column-major, m)`.
+pub type Flat = SVector<f64, 12>;
+
+/// Flattens a rigid-body state.
+#[must_use]
+pub fn flatten(s: &RigidBodyState) -> Flat {
+    let mut y = Flat::zeros();
+    y.fixed_rows_mut::<9>(0)
+        .copy_from_slice(s.rotation.as_slice());
+    y.fixed_rows_mut::<3>(9).copy_from(&s.momentum);
+    y
+}
+
+/// The state of a flattened vector.
+#[must_use]
+pub fn unflatten(y: &Flat) -> RigidBodyState {
+    RigidBodyState {
+        rotation: Matrix3::from_column_slice(&y.as_slice()[..9]),
+        momentum: Vector3::new(y[9], y[10], y[11]),
+    }
+}
+
+/// Euler's equations with the orientation on `ℝ¹²`, for vector-space integrators.
+#[derive(Debug, Clone, Copy)]
+pub struct FlatRigidBody<B>(pub B);
+
+impl<B: RigidBody> Ode<Flat> for FlatRigidBody<B> {
+    fn rhs(&self, t: f64, y: &Flat, dy: &mut Flat) {
+        let r = Matrix3::from_column_slice(&y.as_slice()[..9]);
+        let m = Vector3::new(y[9], y[10], y[11]);
+        let (omega, dm) = EulerEquations(&self.0).eval(t, &r, &m);
+        let rd = r * hat(&omega);
+        dy.fixed_rows_mut::<9>(0).copy_from_slice(rd.as_slice());
+        dy.fixed_rows_mut::<3>(9).copy_from(&dm);
+    }
+}
+
+/// Writes a row: t, quaternion, body ω, energy, (relative error slot), L, and the distance from
+/// the exact solution when one is given.
+fn write_row<B: RigidBody>(
+    body: &B,
+    exact: Option<&ExactFlow>,
+    t: f64,
+    s: &RigidBodyState,
+    out: &mut [f64],
+) {
+    let q = rotation_to_quat(&Rotation3::from_matrix_unchecked(s.rotation));
+    let omega = body.body().omega(&s.momentum);
+    let l = s.rotation * s.momentum;
+    let head = [
+        t,
+        q.w,
+        q.i,
+        q.j,
+        q.k,
+        omega.x,
+        omega.y,
+        omega.z,
+        body.hamiltonian(s),
+        0.0,
+        l.x,
+        l.y,
+        l.z,
+    ];
+    out[..head.len()].copy_from_slice(&head);
+    if let (Some(flow), Some(slot)) = (exact, out.get_mut(head.len())) {
+        let (r, m) = flow.at(t);
+        let dr = (r.matrix() - s.rotation).amax();
+        let dm = (m - s.momentum).norm() / m.norm().max(f64::MIN_POSITIVE);
+        *slot = dr.max(dm);
+    }
+}
+
+/// Column of the energy in a row.
+const ENERGY_COLUMN: usize = 8;
+
+/// Runs a rigid body with any applicable integrator; `free` is the same body as a
+/// [`FreeRigidBody`] when it is torque-free (it enables `dmv` and `exact`).
+fn run_rigid<B: RigidBody + Copy>(
+    info: &'static SceneInfo,
+    body: B,
+    free: Option<FreeRigidBody>,
+    s0: RigidBodyState,
+    exact: Option<ExactFlow>,
+    resolved: &Resolved,
+    recorder: &mut dyn Recorder,
+) -> Result<RunSummary, SceneError> {
+    let columns = info.columns().len();
+    let row = |t: f64, s: &RigidBodyState, out: &mut [f64]| {
+        write_row(&body, exact.as_ref(), t, s, out);
+    };
+    let name = resolved.integrator.as_str();
+    if VECTOR_INTEGRATORS.contains(&name) {
+        return run_vector(
+            &FlatRigidBody(body),
+            flatten(&s0),
+            resolved,
+            columns,
+            ENERGY_COLUMN,
+            |t, y, out| row(t, &unflatten(y), out),
+            &mut [],
+            recorder,
+        );
+    }
+    let StepControl::Fixed(h) = resolved.step else {
+        return Err(SceneError::InvalidOption {
+            option: "tol",
+            value: f64::NAN,
+            reason: format!("`{name}` has a fixed step: give a step instead"),
+        });
+    };
+    let driver = Driver::new(0.0, resolved.t_end)?;
+    let mut observer = RowObserver::new(columns, ENERGY_COLUMN, resolved.every, row, recorder);
+    let mut state = s0;
+    macro_rules! group {
+        ($stepper:expr) => {{
+            let mut stepper = $stepper;
+            let mut g = GroupState {
+                rotation: s0.rotation,
+                vector: s0.momentum,
+            };
+            let mut group_observer = GroupRows(&mut observer);
+            let report = driver.run_fixed(
+                &mut stepper,
+                &EulerEquations(body),
+                &mut g,
+                h,
+                &mut group_observer,
+            )?;
+            (report.t, report.steps)
+        }};
+    }
+    macro_rules! on {
+        ($problem:expr, $stepper:expr) => {{
+            let mut stepper = $stepper;
+            let report = driver.run_fixed(&mut stepper, $problem, &mut state, h, &mut observer)?;
+            (report.t, report.steps)
+        }};
+    }
+    let unsupported = || SceneError::UnsupportedIntegrator {
+        scene: info.name.to_string(),
+        name: name.to_string(),
+        applicable: info.integrators.join(", "),
+    };
+    let (t, steps) = match name {
+        "lgvi" => on!(&body, Lgvi::new()),
+        "split2" => on!(&body, PrincipalAxisSplitting::new()),
+        "split4" => on!(&body, split4()),
+        "split6" => on!(&body, split6()),
+        "split8" => on!(&body, split8()),
+        "split-exact2" => on!(&body, ExactSplitting::new()),
+        "dmv" => on!(&free.ok_or_else(unsupported)?, Dmv::new()),
+        "exact" => on!(&free.ok_or_else(unsupported)?, ExactStepper::new()),
+        "rkmk4" => group!(rkmk4::<3>()),
+        "cg3" => group!(cg3::<3>()),
+        _ => return Err(unsupported()),
+    };
+    Ok(observer.summary(t, steps, steps))
+}
+
+/// Adapts a row observer of rigid-body states to the Lie-group methods' `GroupState<3>`.
+struct GroupRows<'o, O>(&'o mut O);
+
+impl<O: tumble_integrators::Observer<RigidBodyState>> tumble_integrators::Observer<GroupState<3>>
+    for GroupRows<'_, O>
+{
+    fn observe(&mut self, t: f64, state: &GroupState<3>) -> tumble_integrators::Flow {
+        self.0.observe(
+            t,
+            &RigidBodyState {
+                rotation: state.rotation,
+                momentum: state.vector,
+            },
+        )
+    }
+}
+
+/// Integrators of torque-free bodies.
+pub const FREE_BODY_INTEGRATORS: &[&str] = &[
+    "lgvi", "split2", "split4", "split6", "split8", "dmv", "exact", "rkmk4", "cg3", "rk4", "dp5",
+    "dop853", "gauss2", "gauss4", "gauss6", "gauss8", "gauss10", "gauss12",
+];
+
+/// Integrators of the heavy top.
+pub const HEAVY_TOP_INTEGRATORS: &[&str] = &[
+    "lgvi",
+    "split2",
+    "split4",
+    "split6",
+    "split8",
+    "split-exact2",
+    "rkmk4",
+    "cg3",
+    "rk4",
+    "dp5",
+    "dop853",
+    "gauss2",
+    "gauss4",
+    "gauss6",
+    "gauss8",
+    "gauss10",
+    "gauss12",
+];
+
+const fn spec(
+    name: &'static str,
+    default: f64,
+    unit: &'static str,
+    description: &'static str,
+    domain: Domain,
+) -> ParamSpec {
+    ParamSpec {
+        name,
+        default,
+        unit,
+        description,
+        domain,
+    }
+}
+
+static FREE_BODY_SPECS: [ParamSpec; 6] = [
+    spec(
+        "I1",
+        1.0,
+        "kg m^2",
+        "principal moment about body x",
+        Domain::Positive,
+    ),
+    spec(
+        "I2",
+        2.0,
+        "kg m^2",
+        "principal moment about body y",
+        Domain::Positive,
+    ),
+    spec(
+        "I3",
+        3.0,
+        "kg m^2",
+        "principal moment about body z",
+        Domain::Positive,
+    ),
+    spec(
+        "m1",
+        0.4,
+        "kg m^2/s",
+        "initial body angular momentum, x",
+        Domain::Finite,
+    ),
+    spec(
+        "m2",
+        -0.8,
+        "kg m^2/s",
+        "initial body angular momentum, y",
+        Domain::Finite,
+    ),
+    spec(
+        "m3",
+        0.6,
+        "kg m^2/s",
+        "initial body angular momentum, z",
+        Domain::Finite,
+    ),
+];
+
+/// The `free-body` scene.
+pub static FREE_BODY: SceneInfo = SceneInfo {
+    name: "free-body",
+    summary: "torque-free asymmetric rigid body",
+    coordinates: &["qw", "qx", "qy", "qz"],
+    parameters: &FREE_BODY_SPECS,
+    conserved: &["energy", "L (vector)", "|m| (Casimir)"],
+    oracle: "exact solution by Jacobi elliptic functions and an elliptic integral of the third kind (column exact_err)",
+    integrators: FREE_BODY_INTEGRATORS,
+    default_integrator: "split4",
+    default_step: 0.01,
+    default_t_end: 20.0,
+    diagnostics: &["energy", "energy_rel_err", "Lx", "Ly", "Lz", "exact_err"],
+    rate_names: &["omega_x", "omega_y", "omega_z"],
+};
+
+fn check_momentum(scene: &str, m: &Vector3<f64>) -> Result<(), SceneError> {
+    if m.norm() > 0.0 {
+        Ok(())
+    } else {
+        Err(SceneError::InvalidParameter {
+            scene: scene.to_string(),
+            name: "m1, m2, m3".into(),
+            value: 0.0,
+            requirement: "must not all be zero (the body must rotate)",
+        })
+    }
+}
+
+/// Runs `free-body`.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct FreeBodyScene;
+
+impl Scene for FreeBodyScene {
+    fn info(&self) -> &'static SceneInfo {
+        &FREE_BODY
+    }
+
+    fn simulate(
+        &self,
+        params: &Params,
+        options: &RunOptions,
+        recorder: &mut dyn Recorder,
+    ) -> Result<RunSummary, SceneError> {
+        let info = self.info();
+        let resolved = options.resolve(info)?;
+        let moments = Vector3::new(params.get("I1")?, params.get("I2")?, params.get("I3")?);
+        let body = FreeRigidBody::from_principal_moments(moments)?;
+        let m0 = Vector3::new(params.get("m1")?, params.get("m2")?, params.get("m3")?);
+        check_momentum(info.name, &m0)?;
+        let r0 = Rotation3::identity();
+        let exact = body.flow(&r0, &m0)?;
+        let s0 = RigidBodyState::new(&r0, m0);
+        run_rigid(info, body, Some(body), s0, Some(exact), &resolved, recorder)
+    }
+}
+
+static DZHANIBEKOV_SPECS: [ParamSpec; 3] = [
+    spec(
+        "mass",
+        0.05,
+        "kg",
+        "mass of the T-handle (80 x 20 x 20 mm bar on a 60 mm stem)",
+        Domain::Positive,
+    ),
+    spec(
+        "spin",
+        20.0,
+        "rad/s",
+        "initial spin about the intermediate principal axis",
+        Domain::Finite,
+    ),
+    spec(
+        "perturbation",
+        1e-3,
+        "",
+        "initial angular velocity about each of the other principal axes, relative to the spin",
+        Domain::Finite,
+    ),
+];
+
+/// The `dzhanibekov` scene.
+pub static DZHANIBEKOV: SceneInfo = SceneInfo {
+    name: "dzhanibekov",
+    summary: "T-handle spun near its intermediate axis flips periodically (Dzhanibekov effect)",
+    coordinates: &["qw", "qx", "qy", "qz"],
+    parameters: &DZHANIBEKOV_SPECS,
+    conserved: &["energy", "L (vector)", "|m| (Casimir)"],
+    oracle: "flip period = half the period of the exact solution (4K(k)/lambda)",
+    integrators: FREE_BODY_INTEGRATORS,
+    default_integrator: "split4",
+    default_step: 1e-3,
+    default_t_end: 10.0,
+    diagnostics: &["energy", "energy_rel_err", "Lx", "Ly", "Lz", "exact_err"],
+    rate_names: &["omega_x", "omega_y", "omega_z"],
+};
+
+/// Runs `dzhanibekov`.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct DzhanibekovScene;
+
+impl DzhanibekovScene {
+    /// The T-handle's body and its initial state (identity orientation, spin about the
+    /// intermediate axis plus the perturbation on the others).
+    ///
+    /// # Errors
+    /// Invalid parameters; an invalid T-handle (not for the standard one).
+    pub fn body_and_state(params: &Params) -> Result<(FreeRigidBody, RigidBodyState), SceneError> {
+        let props = THandle::STANDARD.mass_properties(MassSpec::TotalMass(params.get("mass")?))?;
+        let body = FreeRigidBody::from_inertia(props.inertia())?;
+        let axes = props.principal().axes;
+        let spin = params.get("spin")?;
+        let eps = params.get("perturbation")? * spin;
+        let omega = axes.matrix() * Vector3::new(eps, spin, eps);
+        let m0 = props.inertia() * omega;
+        Ok((body, RigidBodyState::new(&Rotation3::identity(), m0)))
+    }
+}
+
+impl Scene for DzhanibekovScene {
+    fn info(&self) -> &'static SceneInfo {
+        &DZHANIBEKOV
+    }
+
+    fn simulate(
+        &self,
+        params: &Params,
+        options: &RunOptions,
+        recorder: &mut dyn Recorder,
+    ) -> Result<RunSummary, SceneError> {
+        let info = self.info();
+        let resolved = options.resolve(info)?;
+        let (body, s0) = Self::body_and_state(params)?;
+        check_momentum(info.name, &s0.momentum)?;
+        let exact = body.flow(&Rotation3::identity(), &s0.momentum)?;
+        run_rigid(info, body, Some(body), s0, Some(exact), &resolved, recorder)
+    }
+}
+
+static HEAVY_TOP_SPECS: [ParamSpec; 6] = [
+    spec(
+        "I1",
+        5.0,
+        "kg m^2",
+        "moment about body x, about the pivot",
+        Domain::Positive,
+    ),
+    spec(
+        "I2",
+        5.0,
+        "kg m^2",
+        "moment about body y, about the pivot",
+        Domain::Positive,
+    ),
+    spec(
+        "I3",
+        1.0,
+        "kg m^2",
+        "moment about the symmetry axis body z",
+        Domain::Positive,
+    ),
+    spec(
+        "mgl",
+        20.0,
+        "N m",
+        "weight times the pivot-to-centre-of-mass distance (along body z)",
+        Domain::NonNegative,
+    ),
+    spec(
+        "tilt0",
+        0.05,
+        "rad",
+        "initial rotation about lab x: Lambda0 = exp(hat(tilt0, 0, 0))",
+        Domain::Finite,
+    ),
+    spec(
+        "spin0",
+        50.0,
+        "rad/s",
+        "initial body angular velocity about body z",
+        Domain::Finite,
+    ),
+];
+
+/// The `heavy-top` scene.
+pub static HEAVY_TOP: SceneInfo = SceneInfo {
+    name: "heavy-top",
+    summary: "Lagrange top on a fixed pivot; defaults are Simo and Wong's hard case (H = 1269.975)",
+    coordinates: &["qw", "qx", "qy", "qz"],
+    parameters: &HEAVY_TOP_SPECS,
+    conserved: &["energy", "Lz", "L . e3 (symmetric top)"],
+    oracle: "energy H = 1269.975 conserved; Lz and the spin L . (R e3) conserved",
+    integrators: HEAVY_TOP_INTEGRATORS,
+    default_integrator: "lgvi",
+    default_step: 1e-3,
+    default_t_end: 10.0,
+    diagnostics: &["energy", "energy_rel_err", "Lx", "Ly", "Lz"],
+    rate_names: &["omega_x", "omega_y", "omega_z"],
+};
+
+/// Runs `heavy-top`.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct HeavyTopScene;
+
+impl HeavyTopScene {
+    /// The top and its initial state.
+    ///
+    /// # Errors
+    /// Invalid parameters (non-physical inertia).
+    pub fn top_and_state(params: &Params) -> Result<(HeavyTop, RigidBodyState), SceneError> {
+        let moments = Vector3::new(params.get("I1")?, params.get("I2")?, params.get("I3")?);
+        let body = FreeRigidBody::from_principal_moments(moments)?;
+        let top = HeavyTop::new(body, params.get("mgl")?, Vector3::z())?;
+        let r0 = exp(&Vector3::new(params.get("tilt0")?, 0.0, 0.0));
+        let w0 = Vector3::new(0.0, 0.0, params.get("spin0")?);
+        let m0 = body.inertia() * w0;
+        Ok((top, RigidBodyState::new(&r0, m0)))
+    }
+}
+
+impl Scene for HeavyTopScene {
+    fn info(&self) -> &'static SceneInfo {
+        &HEAVY_TOP
+    }
+
+    fn simulate(
+        &self,
+        params: &Params,
+        options: &RunOptions,
+        recorder: &mut dyn Recorder,
+    ) -> Result<RunSummary, SceneError> {
+        let info = self.info();
+        let resolved = options.resolve(info)?;
+        let (top, s0) = Self::top_and_state(params)?;
+        run_rigid(info, top, None, s0, None, &resolved, recorder)
+    }
+}
