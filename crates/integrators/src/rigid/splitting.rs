@@ -63,7 +63,7 @@
 use nalgebra::{Matrix3, Rotation3, Vector3};
 
 use crate::rigid::state::compensated_add_all;
-use crate::state::same_time;
+use crate::state::{compensated_add, same_time};
 
 use crate::composition::Composition;
 use crate::error::{Error, check_step};
@@ -202,18 +202,24 @@ fn principal_rotation(axis: usize, tau: f64, moments: &Vector3<f64>, x: &mut Pri
     // drift of ‖PᵀP − 𝟙‖).
     let half = (0.5 * theta).sin();
     let cm1 = -2.0 * half * half;
-    // exp(θ hat eᵢ) maps e_j ↦ c e_j + s e_k and e_k ↦ −s e_j + c e_k.
-    let mut dp = Matrix3::zeros();
-    let mut dmu = Vector3::zeros();
+    // exp(θ hat eᵢ) maps e_j ↦ c e_j + s e_k and e_k ↦ −s e_j + c e_k; only the entries that
+    // change are touched.
     let (mj, mk) = (x.mu[j], x.mu[k]);
-    dmu[j] = cm1 * mj + s * mk;
-    dmu[k] = cm1 * mk - s * mj;
+    compensated_add(&mut x.mu[j], cm1 * mj + s * mk, &mut x.carry_mu[j]);
+    compensated_add(&mut x.mu[k], cm1 * mk - s * mj, &mut x.carry_mu[k]);
     for row in 0..3 {
         let (pj, pk) = (x.p[(row, j)], x.p[(row, k)]);
-        dp[(row, j)] = cm1 * pj + s * pk;
-        dp[(row, k)] = cm1 * pk - s * pj;
+        compensated_add(
+            &mut x.p[(row, j)],
+            cm1 * pj + s * pk,
+            &mut x.carry_p[(row, j)],
+        );
+        compensated_add(
+            &mut x.p[(row, k)],
+            cm1 * pk - s * pj,
+            &mut x.carry_p[(row, k)],
+        );
     }
-    x.add(&dp, &dmu);
 }
 
 /// `μ ← μ + τ Qᵀ M(P Qᵀ)`: the kick of the potential over `tau`, in the principal frame.
@@ -221,7 +227,7 @@ fn principal_rotation(axis: usize, tau: f64, moments: &Vector3<f64>, x: &mut Pri
 fn kick<B: RigidBody + ?Sized>(problem: &B, q: &Matrix3<f64>, x: &mut Principal, tau: f64) {
     let rotation = x.p * q.transpose();
     let dmu = q.transpose() * (problem.torque(&rotation) * tau);
-    x.add(&Matrix3::zeros(), &dmu);
+    compensated_add_all(&mut x.mu, &dmu, &mut x.carry_mu);
 }
 
 impl<B: RigidBody + ?Sized> Stepper<B> for PrincipalAxisSplitting {
