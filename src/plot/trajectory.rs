@@ -2,8 +2,10 @@
 //! error against time.
 //!
 //! Panels, top to bottom: one per kind of coordinate (angles in rad, positions in m, others
-//! without a unit), one per kind of rate (rad/s, m/s), and the relative energy error
-//! `|E − E₀|/|E₀|` on a logarithmic axis when the run has an `energy_rel_err` column.
+//! without a unit), one per kind of rate (rad/s, m/s), the hoop's tilt when the run has a
+//! `tilt` column that is not identically zero (a hoop that stays vertical has nothing to show),
+//! and the relative energy error `|E − E₀|/|E₀|` on a logarithmic axis when the run has an
+//! `energy_rel_err` column.
 //!
 //! Scenes name their coordinates but not their units, so the unit is read from the name
 //! ([`quantity`]): Greek angle names (`alpha`, `phi`, `theta`, `psi`, …) are angles in
@@ -124,6 +126,13 @@ pub fn figure(title: impl Into<String>, run: &Run<'_>) -> StackedFigure {
         }
         panels.push(panel);
     }
+    if run
+        .column("tilt")
+        .is_some_and(|v| v.iter().any(|&x| x != 0.0))
+        && let Some(s) = run.series("tilt", "tilt")
+    {
+        panels.push(Panel::new(TIME, "hoop tilt from vertical (rad)").with_series(s));
+    }
     if let Some(s) = run.series("energy_rel_err", "|E − E₀| / |E₀|") {
         panels.push(
             Panel::new(TIME, "relative energy error")
@@ -157,9 +166,9 @@ mod tests {
         let columns: Vec<String> = ["t", "phi", "x", "alpha", "phi_dot", "x_dot", "alpha_dot"]
             .iter()
             .map(|s| (*s).to_string())
-            .chain(["energy".into(), "energy_rel_err".into()])
+            .chain(["energy".into(), "energy_rel_err".into(), "tilt".into()])
             .collect();
-        let values = vec![vec![0.0, 1.0]; columns.len()];
+        let mut values = vec![vec![0.0, 1.0]; columns.len()];
         let run = Run {
             columns: &columns,
             values: &values,
@@ -174,6 +183,7 @@ mod tests {
                 "position (m)",
                 "angle rate (rad/s)",
                 "position rate (m/s)",
+                "hoop tilt from vertical (rad)",
                 "relative energy error"
             ]
         );
@@ -183,7 +193,15 @@ mod tests {
             .map(|s| s.label.as_str())
             .collect();
         assert_eq!(names, ["phi", "alpha"]);
-        assert_eq!(f.panels[4].y_scale, Scale::Log);
+        assert_eq!(f.panels[5].y_scale, Scale::Log);
         assert!(f.panels.iter().all(|p| p.x_label == "time t (s)"));
+        // A tilt that stays 0 (a vertical hoop) gets no panel.
+        values[9] = vec![0.0, 0.0];
+        let run = Run {
+            columns: &columns,
+            values: &values,
+            coordinates: &["phi", "x", "alpha"],
+        };
+        assert_eq!(figure("title", &run).panels.len(), 5);
     }
 }

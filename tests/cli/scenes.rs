@@ -45,10 +45,7 @@ fn json_lists_every_builtin_scene_with_its_parameters_columns_and_defaults() {
             assert_eq!(p["domain"], spec.domain.to_string());
         }
         assert_eq!(entry["default_integrator"], info.default_integrator);
-        assert_eq!(
-            entry["default_t_end"].as_f64().unwrap(),
-            info.default_t_end
-        );
+        assert_eq!(entry["default_t_end"].as_f64().unwrap(), info.default_t_end);
         // Exactly one of a default step and a default tolerance.
         assert!(entry.get("default_dt").is_some() != entry.get("default_tol").is_some());
         let integrators: Vec<&str> = entry["integrators"]
@@ -74,8 +71,7 @@ fn text_listing_names_every_scene_parameter_and_unit() {
             assert!(
                 text.lines().any(|l| {
                     let cells: Vec<&str> = l.split_whitespace().collect();
-                    cells.first() == Some(&p.name)
-                        && (p.unit.is_empty() || cells.contains(&p.unit))
+                    cells.first() == Some(&p.name) && (p.unit.is_empty() || cells.contains(&p.unit))
                 }),
                 "{}: parameter {} missing",
                 info.name,
