@@ -128,12 +128,21 @@ fn driven_hoop_csv_has_the_header_rows_and_initial_conditions() {
     assert_eq!(first[2], defaults.get("alpha_dot0").unwrap());
     assert_eq!(first[4], 0.0, "relative energy error at t = 0");
     assert!((rows[100][0] - 1.0).abs() < 1e-12);
-    assert!(rows.windows(2).all(|w| w[1][0] > w[0][0]), "time not increasing");
+    assert!(
+        rows.windows(2).all(|w| w[1][0] > w[0][0]),
+        "time not increasing"
+    );
     // Only the CSV is left: no temporary file.
     assert_eq!(entries(dir.path()), ["out.csv"]);
     // The summary names the scene, integrator and step.
     let err = stderr(&out);
-    for word in ["driven-hoop", "gauss8", "dt = 0.01", "100 steps", "101 rows"] {
+    for word in [
+        "driven-hoop",
+        "gauss8",
+        "dt = 0.01",
+        "100 steps",
+        "101 rows",
+    ] {
         assert!(err.contains(word), "{word}: {err}");
     }
 }
@@ -300,7 +309,12 @@ fn plots_are_written_as_png_and_svg() {
     );
     let svg = std::fs::read_to_string(dir.path().join("run.svg")).unwrap();
     assert!(svg.contains("<svg") && svg.trim_end().ends_with("</svg>"));
-    for label in ["time t (s)", "angle (rad)", "angle rate (rad/s)", "driven-hoop"] {
+    for label in [
+        "time t (s)",
+        "angle (rad)",
+        "angle rate (rad/s)",
+        "driven-hoop",
+    ] {
         assert!(svg.contains(label), "{label} missing from the SVG");
     }
     assert_eq!(
@@ -323,7 +337,14 @@ fn unknown_scenes_and_parameters_are_named() {
     );
     fails(
         &[],
-        &["simulate", "driven-hoop", "--set", "omega=fast", "-o", "x.csv"],
+        &[
+            "simulate",
+            "driven-hoop",
+            "--set",
+            "omega=fast",
+            "-o",
+            "x.csv",
+        ],
         &["`fast` is not a number"],
     );
     fails(
@@ -400,7 +421,14 @@ fn bad_output_paths_are_rejected_before_running() {
     );
     fails(
         &[],
-        &["simulate", "driven-hoop", "-o", "x.csv", "--plot", "no/x.png"],
+        &[
+            "simulate",
+            "driven-hoop",
+            "-o",
+            "x.csv",
+            "--plot",
+            "no/x.png",
+        ],
         &["no/x.png", "does not exist"],
     );
 }
