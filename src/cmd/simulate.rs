@@ -22,7 +22,7 @@ use tumble_scenarios::scene::Resolved;
 use tumble_scenarios::scene_file::SceneFile;
 use tumble_scenarios::scenes;
 use tumble_scenarios::{
-    ModelError, Params, Recorder, RunOptions, RunSummary, Scene, SceneError, StepControl,
+    ModelError, Params, Recorder, RunOptions, RunSummary, Scene, SceneError, SceneInfo, StepControl,
 };
 
 use super::args::parse_angle;
@@ -209,14 +209,29 @@ fn failure_state(e: &SceneError) -> Option<&[f64]> {
     }
 }
 
-/// A run failure with the state it carries, named by the scene's coordinates and rates.
-fn failure_message(scene: &str, e: &SceneError, coordinates: &[&str]) -> String {
-    let mut msg = format!("{scene}: {e}");
+/// The names of a scene's rate columns: `<coordinate>_dot`, or the scene's own rate names
+/// (a rotation's body angular velocity).
+fn rate_columns(info: &SceneInfo) -> Vec<String> {
+    if info.rate_names.is_empty() {
+        info.coordinates
+            .iter()
+            .map(|c| format!("{c}_dot"))
+            .collect()
+    } else {
+        info.rate_names.iter().map(|r| (*r).to_string()).collect()
+    }
+}
+
+/// A run failure with the state it carries, named by the scene's coordinates and rates when
+/// the state has one value for each.
+fn failure_message(info: &SceneInfo, e: &SceneError) -> String {
+    let mut msg = format!("{}: {e}", info.name);
     if let Some(state) = failure_state(e) {
-        let names: Vec<String> = coordinates
+        let names: Vec<String> = info
+            .coordinates
             .iter()
             .map(|c| (*c).to_string())
-            .chain(coordinates.iter().map(|c| format!("{c}_dot")))
+            .chain(rate_columns(info))
             .collect();
         if names.len() == state.len() {
             let parts: Vec<String> = names
@@ -319,8 +334,7 @@ fn run_into<W: Write>(setup: &Setup, out: W, keep: bool) -> Result<Outcome> {
     let result = setup
         .scene
         .simulate(&setup.params, &setup.options, &mut recorder);
-    let summary =
-        result.map_err(|e| anyhow::anyhow!(failure_message(info.name, &e, info.coordinates)))?;
+    let summary = result.map_err(|e| anyhow::anyhow!(failure_message(info, &e)))?;
     let (kept, closed) = recorder.finish().context("cannot write the CSV")?;
     Ok(Outcome {
         summary,
@@ -370,10 +384,12 @@ pub fn run(args: &Args) -> Result<()> {
 
     if let (Some(path), Some(values)) = (&args.plot, &kept) {
         let columns = info.columns();
+        let rates = rate_columns(info);
         let run = plot::trajectory::Run {
             columns: &columns,
             values,
             coordinates: info.coordinates,
+            rates: &rates,
         };
         let mut figure = plot::trajectory::figure(
             format!(

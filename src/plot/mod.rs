@@ -6,7 +6,9 @@
 //!   compiled into the binary and registered with plotters' `ab_glyph` backend as the
 //!   `sans-serif` family ([`register_fonts`]), so text renders the same on a machine without
 //!   fontconfig or any installed font. SVG output names the `sans-serif` family; the shipped
-//!   font only measures the text there.
+//!   font only measures the text there. PNG text is laid out by [`text::ShapedText`] (plotters
+//!   0.3.7 misplaces glyphs), PNGs are drawn at [`SUPERSAMPLE`] times their size and averaged
+//!   down (plotters draws lines aliased), and encoded with the best PNG compression.
 //! * **Figures are values.** A [`Figure`] knows its size and draws itself on any plotters
 //!   backend; [`save`] picks PNG or SVG from the file's extension and writes the file whole or
 //!   not at all (temporary file beside it, renamed when complete).
@@ -152,10 +154,7 @@ pub fn save(figure: &impl Figure, path: &Path) -> Result<()> {
             };
             drawn.and_then(|()| {
                 let small = downsample(&rgb, size, k);
-                let mut png = BitMapBackend::new(&temp, size);
-                png.blit_bitmap((0, 0), size, &small)
-                    .and_then(|()| png.present())
-                    .map_err(|e| anyhow!("{e}"))
+                encode_png(&temp, &small, size)
             })
         }
         Format::Svg => {
@@ -168,6 +167,19 @@ pub fn save(figure: &impl Figure, path: &Path) -> Result<()> {
     };
     drawn.with_context(|| format!("cannot draw {}", path.display()))?;
     output::commit(temp, path)
+}
+
+/// Writes an RGB image as PNG with the best compression (plotters' encoder uses the fastest,
+/// which makes README plots several times larger).
+fn encode_png(path: &Path, rgb: &[u8], (w, h): (u32, u32)) -> Result<()> {
+    use image::ImageEncoder;
+    use image::codecs::png::{CompressionType, FilterType, PngEncoder};
+    let file = std::fs::File::create(path)?;
+    let mut out = std::io::BufWriter::new(file);
+    PngEncoder::new_with_quality(&mut out, CompressionType::Best, FilterType::Adaptive)
+        .write_image(rgb, w, h, image::ColorType::Rgb8)?;
+    std::io::Write::flush(&mut out)?;
+    Ok(())
 }
 
 /// A text style of the shipped font at `size` pixels.

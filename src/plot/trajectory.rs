@@ -1,15 +1,18 @@
 //! The `simulate --plot` figure: a scene's coordinates, their rates and the relative energy
 //! error against time.
 //!
-//! Panels, top to bottom: one per kind of coordinate (angles in rad, positions in m, others
-//! without a unit), one per kind of rate (rad/s, m/s), the hoop's tilt when the run has a
-//! `tilt` column that is not identically zero (a hoop that stays vertical has nothing to show),
-//! and the relative energy error `|E − E₀|/|E₀|` on a logarithmic axis when the run has an
-//! `energy_rel_err` column.
+//! Panels, top to bottom: one per kind of coordinate (angles in rad, positions in m,
+//! quaternion components, others without a unit), one per kind of rate (rad/s, m/s, the body
+//! angular velocity of a rotation), the hoop's tilt when the run has a `tilt` column that is
+//! not identically zero (a hoop that stays vertical has nothing to show), and, on logarithmic
+//! axes, the relative energy error `|E − E₀|/|E₀|` (`energy_rel_err`) and the error against an
+//! exact solution (`exact_err`) when the run has those columns.
 //!
-//! Scenes name their coordinates but not their units, so the unit is read from the name
-//! ([`quantity`]): Greek angle names (`alpha`, `phi`, `theta`, `psi`, …) are angles in
-//! radians, `x`, `y`, `z` (and `r`, `s`) lengths in metres.
+//! Scenes name their coordinates and rates but not their units, so the unit is read from the
+//! name ([`quantity`], [`rate_quantity`]): Greek angle names (`alpha`, `phi`, `theta`, `psi`,
+//! …) are angles in radians, `x`, `y`, `z` (and `r`, `s`) lengths in metres, `qw`, `qx`, `qy`,
+//! `qz` components of a unit quaternion; a rate `<name>_dot` has the unit of `<name>` per
+//! second, `omega_x` (any `omega_*`) is an angular velocity in rad/s.
 
 use super::xy::{Panel, Scale, Series, StackedFigure};
 
@@ -48,12 +51,32 @@ pub fn quantity(name: &str) -> Quantity {
             unit: "m",
             rate_unit: "m/s",
         }
+    } else if matches!(stem.as_str(), "qw" | "qx" | "qy" | "qz") {
+        Quantity {
+            kind: "orientation quaternion",
+            unit: "",
+            rate_unit: "1/s",
+        }
     } else {
         Quantity {
             kind: "coordinate",
             unit: "",
             rate_unit: "",
         }
+    }
+}
+
+/// The quantity a rate column named `name` measures, as `(kind, unit)`: `<coordinate>_dot` is
+/// the coordinate's rate, `omega_*` an angular velocity.
+#[must_use]
+pub fn rate_quantity(name: &str) -> (String, &'static str) {
+    if let Some(coordinate) = name.strip_suffix("_dot") {
+        let q = quantity(coordinate);
+        (format!("{} rate", q.kind), q.rate_unit)
+    } else if name == "omega" || name.starts_with("omega_") {
+        ("angular velocity".to_string(), "rad/s")
+    } else {
+        ("rate".to_string(), "")
     }
 }
 
@@ -73,8 +96,10 @@ pub struct Run<'a> {
     pub columns: &'a [String],
     /// `values[j][i]`: column `j` at row `i`.
     pub values: &'a [Vec<f64>],
-    /// The scene's coordinates (rates are `<name>_dot`).
+    /// The scene's coordinates.
     pub coordinates: &'a [&'a str],
+    /// The scene's rate columns (`<coordinate>_dot`, or named rates such as `omega_x`).
+    pub rates: &'a [String],
 }
 
 impl Run<'_> {
@@ -98,29 +123,24 @@ impl Run<'_> {
 pub fn figure(title: impl Into<String>, run: &Run<'_>) -> StackedFigure {
     const TIME: &str = "time t (s)";
     let mut panels = Vec::new();
-    // Group coordinates by quantity, keeping the scene's order.
-    let mut groups: Vec<(Quantity, Vec<&str>)> = Vec::new();
+    // Group coordinates, then rates, by quantity, keeping the scene's order.
+    let mut groups: Vec<(String, Vec<&str>)> = Vec::new();
+    let mut add = |label: String, name| match groups.iter_mut().find(|(g, _)| *g == label) {
+        Some((_, names)) => names.push(name),
+        None => groups.push((label, vec![name])),
+    };
     for &c in run.coordinates {
         let q = quantity(c);
-        match groups.iter_mut().find(|(g, _)| *g == q) {
-            Some((_, names)) => names.push(c),
-            None => groups.push((q, vec![c])),
-        }
+        add(with_unit(q.kind, q.unit), c);
     }
-    for (q, names) in &groups {
-        let mut panel = Panel::new(TIME, with_unit(q.kind, q.unit));
+    for r in run.rates {
+        let (kind, unit) = rate_quantity(r);
+        add(with_unit(&kind, unit), r.as_str());
+    }
+    for (label, names) in &groups {
+        let mut panel = Panel::new(TIME, label.as_str());
         for name in names {
             if let Some(s) = run.series(name, name) {
-                panel = panel.with_series(s);
-            }
-        }
-        panels.push(panel);
-    }
-    for (q, names) in &groups {
-        let mut panel = Panel::new(TIME, with_unit(&format!("{} rate", q.kind), q.rate_unit));
-        for name in names {
-            let column = format!("{name}_dot");
-            if let Some(s) = run.series(&column, &column) {
                 panel = panel.with_series(s);
             }
         }
@@ -136,6 +156,13 @@ pub fn figure(title: impl Into<String>, run: &Run<'_>) -> StackedFigure {
     if let Some(s) = run.series("energy_rel_err", "|E − E₀| / |E₀|") {
         panels.push(
             Panel::new(TIME, "relative energy error")
+                .with_y_scale(Scale::Log)
+                .with_series(s),
+        );
+    }
+    if let Some(s) = run.series("exact_err", "exact_err") {
+        panels.push(
+            Panel::new(TIME, "error against the exact solution")
                 .with_y_scale(Scale::Log)
                 .with_series(s),
         );
@@ -158,7 +185,59 @@ mod tests {
         assert_eq!(quantity("alpha").unit, "rad");
         assert_eq!(quantity("theta1").rate_unit, "rad/s");
         assert_eq!(quantity("z").unit, "m");
-        assert_eq!(quantity("q0").unit, "");
+        assert_eq!(quantity("q0").kind, "coordinate");
+        assert_eq!(quantity("qx").kind, "orientation quaternion");
+        assert_eq!(
+            rate_quantity("alpha_dot"),
+            ("angle rate".to_string(), "rad/s")
+        );
+        assert_eq!(
+            rate_quantity("omega_y"),
+            ("angular velocity".to_string(), "rad/s")
+        );
+    }
+
+    #[test]
+    fn quaternion_scenes_get_orientation_and_angular_velocity_panels() {
+        let columns: Vec<String> = [
+            "t",
+            "qw",
+            "qx",
+            "qy",
+            "qz",
+            "alpha",
+            "omega_x",
+            "omega_y",
+            "omega_z",
+            "alpha_dot",
+            "exact_err",
+        ]
+        .map(String::from)
+        .into();
+        let values = vec![vec![0.0, 1.0]; columns.len()];
+        let rates: Vec<String> = ["omega_x", "omega_y", "omega_z", "alpha_dot"]
+            .map(String::from)
+            .into();
+        let run = Run {
+            columns: &columns,
+            values: &values,
+            coordinates: &["qw", "qx", "qy", "qz", "alpha"],
+            rates: &rates,
+        };
+        let f = figure("free", &run);
+        let labels: Vec<&str> = f.panels.iter().map(|p| p.y_label.as_str()).collect();
+        assert_eq!(
+            labels,
+            [
+                "orientation quaternion",
+                "angle (rad)",
+                "angular velocity (rad/s)",
+                "angle rate (rad/s)",
+                "error against the exact solution"
+            ]
+        );
+        assert_eq!(f.panels[0].series.len(), 4);
+        assert_eq!(f.panels[2].series.len(), 3);
     }
 
     #[test]
@@ -169,10 +248,12 @@ mod tests {
             .chain(["energy".into(), "energy_rel_err".into(), "tilt".into()])
             .collect();
         let mut values = vec![vec![0.0, 1.0]; columns.len()];
+        let rates: Vec<String> = ["phi_dot", "x_dot", "alpha_dot"].map(String::from).into();
         let run = Run {
             columns: &columns,
             values: &values,
             coordinates: &["phi", "x", "alpha"],
+            rates: &rates,
         };
         let f = figure("title", &run);
         let labels: Vec<&str> = f.panels.iter().map(|p| p.y_label.as_str()).collect();
@@ -195,12 +276,19 @@ mod tests {
         assert_eq!(names, ["phi", "alpha"]);
         assert_eq!(f.panels[5].y_scale, Scale::Log);
         assert!(f.panels.iter().all(|p| p.x_label == "time t (s)"));
+        let names: Vec<&str> = f.panels[2]
+            .series
+            .iter()
+            .map(|s| s.label.as_str())
+            .collect();
+        assert_eq!(names, ["phi_dot", "alpha_dot"]);
         // A tilt that stays 0 (a vertical hoop) gets no panel.
         values[9] = vec![0.0, 0.0];
         let run = Run {
             columns: &columns,
             values: &values,
             coordinates: &["phi", "x", "alpha"],
+            rates: &rates,
         };
         assert_eq!(figure("title", &run).panels.len(), 5);
     }

@@ -263,7 +263,11 @@ fn a_scene_file_sets_parameters_and_run_options_and_set_overrides_them() {
 
 #[test]
 fn the_shipped_scene_files_run() {
-    for file in ["driven-hoop.toml", "spinning-hoop-worked-example.toml"] {
+    for file in [
+        "driven-hoop.toml",
+        "spinning-hoop-worked-example.toml",
+        "free-hoop.toml",
+    ] {
         let path = root().join("scenes").join(file);
         let dir = TempDir::new().unwrap();
         let out = succeeds(
