@@ -1,10 +1,13 @@
 //! # tumble-integrators
 //!
-//! Vector-space integrators for tumble's models, with accuracy we can measure: explicit
-//! Runge–Kutta with error control (RK4, Dormand–Prince 5(4), DOP853 with dense output and
-//! event location), symplectic Euler and Störmer–Verlet, symmetric compositions of any
-//! symmetric base method (Yoshida 4/6/8, Suzuki 4, McLachlan 4, Kahan–Li 6/8,
-//! Sofroniou–Spaletta 10), and Gauss–Legendre collocation with 1…6 stages.
+//! Integrators for tumble's models, with accuracy we can measure: explicit Runge–Kutta with
+//! error control (RK4, Dormand–Prince 5(4), DOP853 with dense output and event location),
+//! symplectic Euler and Störmer–Verlet, symmetric compositions of any symmetric base method
+//! (Yoshida 4/6/8, Suzuki 4, McLachlan 4, Kahan–Li 6/8, Sofroniou–Spaletta 10), Gauss–Legendre
+//! collocation with 1…6 stages, and, in [`rigid`], methods on `SO(3)` and `SO(3) × ℝⁿ`: the
+//! exact free-rigid-body flow, the Lee–Leok–McClamroch Lie group variational integrator (also
+//! for bodies coupled to extra coordinates), Runge–Kutta–Munthe-Kaas 4, Crouch–Grossman 3,
+//! principal-axis splitting composed to orders 2–8, and discrete Moser–Veselov.
 //!
 //! ## Design
 //!
@@ -30,6 +33,10 @@
 //!   increment stops decreasing rather than to an arbitrary tolerance.
 //! - **Errors, not NaN.** Bad parameters and numerical failures are [`Error`] values (with
 //!   time and state); the library never prints and does not panic on user input.
+//! - **Lie groups.** Rigid-body states keep `R` as a 3×3 matrix and every method moves it by
+//!   group operations (exponentials, Cayley maps, exact rotations), applied as compensated
+//!   increments `R + R G`; problems are capabilities again ([`rigid::RigidBody`],
+//!   [`rigid::LieVectorField`], [`rigid::CoupledLagrangian`]); diagnostics are observers.
 //! - **Verification.** [`verification`] is the shared observed-order harness and the exact
 //!   test problems; [`registry`] lists every method with its order, family and properties.
 //!
