@@ -79,5 +79,13 @@ fn text_listing_names_every_scene_parameter_and_unit() {
             );
         }
     }
-    assert!(text.contains("default run  gauss8, dt = 0.01 s, t_end = 10 s"));
+    // A fixed-step default is shown as its step.
+    let driven = tumble_scenarios::scenes::find("driven-hoop")
+        .unwrap()
+        .info();
+    let line = format!(
+        "default run  {}, dt = {} s, t_end = {} s",
+        driven.default_integrator, driven.default_step, driven.default_t_end
+    );
+    assert!(text.contains(&line), "{line} missing");
 }
