@@ -35,11 +35,19 @@
 //! # Properties
 //!
 //! Symplectic, symmetric (the discrete Lagrangian is self-adjoint), order 2, so it composes to
-//! orders 4, 6, 8 through [`crate::Composition`]. `R` stays on `SO(3)` to round-off (`F` is
-//! orthogonal to round-off, `R_{k+1} = R_k F_k` accumulates one rounding per step), and for a
-//! torque-free body `R_{k+1} Π_{k+1} = R_k F_k F_kᵀ Π_k = R_k Π_k`: the spatial angular momentum
-//! is conserved to round-off. For `V = 0` the map is the discrete Moser–Veselov algorithm
-//! ([`crate::rigid::Dmv`] computes it by an independent route).
+//! orders 4, 6, 8 through [`crate::Composition`]. For a torque-free body
+//! `R_{k+1} Π_{k+1} = R_k F_k F_kᵀ Π_k = R_k Π_k`: the spatial angular momentum is conserved,
+//! and so are `|Π|` and the energy (for `V = 0` the map is the discrete Moser–Veselov algorithm,
+//! which [`crate::rigid::Dmv`] computes by an independent route).
+//!
+//! # Round-off
+//!
+//! `F = 𝟙 + G`, `G = 2 (hat f + hat f²)/(1 + |f|²)`, is applied as increments,
+//! `R ← R + R G` and `Π ← Π + ΔΠ`, summed with Kahan compensation carried between steps (reset
+//! when the caller changes the state). Multiplying by `F` instead would round its diagonal
+//! `1 − O(|f|²)` the same way at every step of a steady rotation and make `‖RᵀR − 𝟙‖` grow
+//! linearly; as it is, over 10⁶ steps `‖RᵀR − 𝟙‖`, `R Π`, `|Π|` and the energy of a free body
+//! stay within 5e-15.
 //!
 //! # References
 //! - T. Lee, M. Leok, N. H. McClamroch, *A Lie group variational integrator for the attitude
@@ -99,7 +107,7 @@ impl Lgvi {
     }
 }
 
-/// Outcome of a Newton solve: the solution and the number of iterations.
+/// The solution `f` of a Newton solve.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Solved {
     pub f: Vector3<f64>,
@@ -107,7 +115,7 @@ pub(crate) struct Solved {
 
 /// Solves `a + a × f + (a·f) f − 2 J f = 0` for `f` by Newton's method.
 ///
-/// Returns the last increment norm on failure.
+/// Returns `(iterations, last increment)` on failure.
 pub(crate) fn solve_cayley(
     j: &Matrix3<f64>,
     a: &Vector3<f64>,

@@ -222,3 +222,48 @@ fn bad_steps_and_dimensions_are_errors() {
     bad.momentum = Vector3::new(1.0, 0.0, 0.0);
     assert!(run(&mut Lgvi::default(), &body, bad, 1.0, 0.1, &mut NoObserver).is_ok());
 }
+
+/// The smallest iteration limit with which one step succeeds: the Newton iterations the step
+/// needs to reach round-off (success means the increment fell to 4ε or stagnated below 1e-10).
+fn iterations_needed(step: impl Fn(usize) -> bool) -> usize {
+    (1..=30).find(|&k| step(k)).unwrap_or(usize::MAX)
+}
+
+#[test]
+fn lgvi_newton_converges_to_roundoff_in_a_few_iterations() {
+    let body = asymmetric_body();
+    let top = HeavyTop::simo_wong();
+    let model = BeadOnHoop::standard();
+    let mut lines = vec![];
+    for h in [0.02, 0.2, 1.0] {
+        let k = iterations_needed(|k| {
+            Lgvi::new()
+                .with_max_iterations(k)
+                .step(&body, 0.0, &mut initial_state(), h)
+                .is_ok()
+        });
+        lines.push(format!("free body h = {h}: {k}"));
+        assert!(k <= 5, "free body h = {h}: {k} iterations");
+    }
+    for h in [0.001, 0.009] {
+        let k = iterations_needed(|k| {
+            Lgvi::new()
+                .with_max_iterations(k)
+                .step(&top, 0.0, &mut HeavyTop::simo_wong_initial(), h)
+                .is_ok()
+        });
+        lines.push(format!("Simo–Wong top h = {h}: {k}"));
+        assert!(k <= 4, "Simo–Wong h = {h}: {k} iterations");
+    }
+    for h in [0.001, 0.02, 0.05] {
+        let k = iterations_needed(|k| {
+            CoupledLgvi::<1>::new()
+                .with_max_iterations(k)
+                .step(&model, 0.0, &mut hoop_initial(&model), h)
+                .is_ok()
+        });
+        lines.push(format!("bead on a hoop h = {h}: {k}"));
+        assert!(k <= 5, "bead on a hoop h = {h}: {k} iterations");
+    }
+    eprintln!("Newton iterations per step: {}", lines.join(", "));
+}
