@@ -13,7 +13,7 @@
 //! ```
 //!
 //! `Ω` the body angular velocity (`Ṙ = R hat Ω`). A scene implements the two methods of
-//! [`CoupledLagrangian`] once, generic over the scalar ([`ModelScalar`]: `f64` and the dual numbers
+//! [`CoupledLagrangian`] once, generic over the scalar ([`Scalar`]: `f64` and the dual numbers
 //! of `num-dual`); every derivative the integrators need (`∂T/∂q`, the moment
 //! `M = −∂V/∂η` of `V(R exp(hat η), q)`, `∂V/∂q`, the Newton Jacobian) is then computed by
 //! automatic differentiation, exactly. For a point mass `μ` at body position `r(q)` moving with
@@ -95,14 +95,15 @@ use crate::stepper::Stepper;
 
 /// The scalars models are written in: `f64` and the (hyper-)dual numbers of `num-dual`.
 ///
-/// Constants enter through `D::from(c)`; functions (`sin`, `sqrt`, …) are `RealField`'s.
-pub trait ModelScalar: RealField + Copy + From<f64> {}
+/// Constants enter through `D::from(c)`; functions (`sin`, `sqrt`, …) are `RealField`'s. (The
+/// name is also nalgebra's; import one of them under another name where both are needed.)
+pub trait Scalar: RealField + Copy + From<f64> {}
 
-impl<T: RealField + Copy + From<f64>> ModelScalar for T {}
+impl<T: RealField + Copy + From<f64>> Scalar for T {}
 
 /// The blocks of the kinetic energy `T = ½ ΩᵀJΩ + ΩᵀB q̇ + ½ q̇ᵀM q̇` at a configuration `q`.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct KineticBlocks<D: ModelScalar, const N: usize> {
+pub struct KineticBlocks<D: Scalar, const N: usize> {
     /// `J(q)`: body-frame inertia about the fixed point (symmetric positive definite).
     pub rotational: Matrix3<D>,
     /// `B(q)`: coupling of the body's rotation and the coordinates' rates (3 × N).
@@ -117,14 +118,14 @@ pub struct KineticBlocks<D: ModelScalar, const N: usize> {
 /// would break derivatives) and must not allocate.
 pub trait CoupledLagrangian<const N: usize> {
     /// The kinetic-energy blocks `J(q)`, `B(q)`, `M(q)`.
-    fn kinetic<D: ModelScalar>(&self, q: &SVector<D, N>) -> KineticBlocks<D, N>;
+    fn kinetic<D: Scalar>(&self, q: &SVector<D, N>) -> KineticBlocks<D, N>;
 
     /// The potential `V(R, q)`; `R` maps body to space components.
-    fn potential<D: ModelScalar>(&self, rotation: &Matrix3<D>, q: &SVector<D, N>) -> D;
+    fn potential<D: Scalar>(&self, rotation: &Matrix3<D>, q: &SVector<D, N>) -> D;
 }
 
 /// `T`, `∂T/∂Ω`, `∂T/∂q̇` at velocities `(ξ, v)` for given blocks.
-fn kinetic_terms<D: ModelScalar, const N: usize>(
+fn kinetic_terms<D: Scalar, const N: usize>(
     blocks: &KineticBlocks<D, N>,
     xi: &Vector3<D>,
     v: &SVector<D, N>,
@@ -140,7 +141,7 @@ fn kinetic_terms<D: ModelScalar, const N: usize>(
 }
 
 /// `A_R(w) = 𝟙 + ½ hat w + ¼ w wᵀ`.
-fn a_right<D: ModelScalar>(w: &Vector3<D>) -> Matrix3<D> {
+fn a_right<D: Scalar>(w: &Vector3<D>) -> Matrix3<D> {
     Matrix3::identity() + hat(w) * D::from(0.5) + w * w.transpose() * D::from(0.25)
 }
 

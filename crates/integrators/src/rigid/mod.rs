@@ -60,7 +60,7 @@ pub mod splitting;
 pub mod state;
 
 pub use coupled::{
-    CoupledLagrangian, CoupledLgvi, CoupledVectorField, KineticBlocks, ModelScalar, coupled_energy,
+    CoupledLagrangian, CoupledLgvi, CoupledVectorField, KineticBlocks, Scalar, coupled_energy,
     coupled_kinetic_gradient, coupled_potential_gradient, coupled_state_from_velocities,
     coupled_torque, coupled_velocities,
 };

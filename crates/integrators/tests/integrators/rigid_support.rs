@@ -5,8 +5,7 @@ use nalgebra::{Matrix3, SMatrix, SVector, Vector3};
 use tumble_integrators::rigid::{
     CoupledLagrangian, CoupledLgvi, CoupledState, CoupledVectorField, Dmv, EulerEquations,
     ExactSplitting, ExactStepper, FreeRigidBody, GroupState, HeavyTop, KineticBlocks, Lgvi,
-    ModelScalar, PrincipalAxisSplitting, RigidBody, RigidBodyState, cg3, rkmk4, split4, split6,
-    split8,
+    PrincipalAxisSplitting, RigidBody, RigidBodyState, Scalar, cg3, rkmk4, split4, split6, split8,
 };
 use tumble_integrators::{Driver, Error, FnOde, NoObserver, Observer, Stepper, gauss12};
 use tumble_kinematics::so3::{exp, hat};
@@ -184,7 +183,7 @@ impl BeadOnHoop {
 }
 
 impl CoupledLagrangian<1> for BeadOnHoop {
-    fn kinetic<D: ModelScalar>(&self, q: &SVector<D, 1>) -> KineticBlocks<D, 1> {
+    fn kinetic<D: Scalar>(&self, q: &SVector<D, 1>) -> KineticBlocks<D, 1> {
         let a = D::from(self.radius);
         let m = D::from(self.bead_mass);
         let big = self.hoop_mass * self.radius * self.radius;
@@ -204,7 +203,7 @@ impl CoupledLagrangian<1> for BeadOnHoop {
         }
     }
 
-    fn potential<D: ModelScalar>(&self, rotation: &Matrix3<D>, q: &SVector<D, 1>) -> D {
+    fn potential<D: Scalar>(&self, rotation: &Matrix3<D>, q: &SVector<D, 1>) -> D {
         let a = D::from(self.radius);
         let r = Vector3::new(a * q[0].cos(), a * q[0].sin(), D::from(0.0));
         (rotation * r).z * D::from(self.bead_mass * self.g)
