@@ -299,7 +299,7 @@ impl FreeRigidBody {
                 (0, 0.5 * (i[1] + i[2]))
             };
             let axis_body = q.column(sym).into_owned();
-            let rate = (1.0 / i[sym] - 1.0 / perp) * m0.dot(&axis_body);
+            let rate = (perp - i[sym]) / (i[sym] * perp) * m0.dot(&axis_body);
             return Kind::Symmetric {
                 precession: l_space / perp,
                 axis_body,
@@ -330,8 +330,9 @@ fn align(m: &Vector3<f64>) -> Rotation3<f64> {
 
 fn general(r0: &Rotation3<f64>, mp: &Vector3<f64>, q: &Matrix3<f64>, i: &Vector3<f64>) -> General {
     // Which side of the separatrix: δ = M² − 2E I₂ (the m₂ terms cancel exactly).
-    let t1 = mp.x * mp.x * (1.0 - i[1] / i[0]);
-    let t3 = mp.z * mp.z * (1.0 - i[1] / i[2]);
+    // 1 − I₂/Iⱼ written as (Iⱼ − I₂)/Iⱼ: no cancellation for nearly equal moments.
+    let t1 = mp.x * mp.x * ((i[0] - i[1]) / i[0]);
+    let t3 = mp.z * mp.z * ((i[2] - i[1]) / i[2]);
     let delta = t1 + t3;
     // Within the rounding of its two terms, δ cannot tell the sides apart: on the separatrix.
     let on_separatrix = delta.abs() <= 8.0 * f64::EPSILON * (t1.abs() + t3.abs());
@@ -350,13 +351,17 @@ fn general(r0: &Rotation3<f64>, mp: &Vector3<f64>, q: &Matrix3<f64>, i: &Vector3
     let mr = c.transpose() * (q * mp);
     let ir = Vector3::new(i[perm[0]], i[perm[1]], i[perm[2]]);
     let b = ir.map(|x| 1.0 / x);
+    // Differences of inverse moments without cancellation: bᵢ − bⱼ = (Iⱼ − Iᵢ)/(Iᵢ Iⱼ), exact to
+    // a few ulps even for nearly equal moments (1/1000 − 1/1001 by subtraction loses 6 digits).
+    let db = |i: usize, j: usize| (ir[j] - ir[i]) / (ir[i] * ir[j]);
+    let (b01, b02, b12) = (db(0, 1), db(0, 2), db(1, 2));
     let (m1, m2, m3) = (mr.x, mr.y, mr.z);
     let a1 = (m1 * m1 + m2 * m2 * (ir[0] / ir[1]) * (ir[2] - ir[1]) / (ir[2] - ir[0])).sqrt();
     let a3 = (m3 * m3 + m2 * m2 * (ir[2] / ir[1]) * (ir[1] - ir[0]) / (ir[2] - ir[0])).sqrt();
-    let lambda = a3 * ((b[0] - b[2]) * (b[1] - b[2])).sqrt();
-    let a2 = a1 * a3 * (b[0] - b[2]) / lambda;
-    let denom = a3 * a3 * (b[1] - b[2]);
-    let mut m = a1 * a1 * (b[0] - b[1]) / denom;
+    let lambda = a3 * (b02 * b12).sqrt();
+    let a2 = a1 * a3 * b02 / lambda;
+    let denom = a3 * a3 * b12;
+    let mut m = a1 * a1 * b01 / denom;
     let mut mc = delta / (ir[1] * denom);
     if on_separatrix || mc <= 0.0 || m >= 1.0 {
         m = 1.0;
@@ -380,7 +385,7 @@ fn general(r0: &Rotation3<f64>, mp: &Vector3<f64>, q: &Matrix3<f64>, i: &Vector3
     } else {
         complete_k_mc(mc)
     };
-    let n = (b[0] - b[1]) / (b[2] - b[1]);
+    let n = -b01 / b12;
     let pi_complete = if mc == 0.0 {
         f64::INFINITY
     } else {
@@ -406,7 +411,7 @@ fn general(r0: &Rotation3<f64>, mp: &Vector3<f64>, q: &Matrix3<f64>, i: &Vector3
         n,
         pi_complete,
         pi0,
-        precession_coefficient: big_m * (b[0] - b[2]) / lambda,
+        precession_coefficient: big_m * b02 / lambda,
         big_m,
     }
 }

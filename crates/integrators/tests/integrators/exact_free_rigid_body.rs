@@ -273,3 +273,15 @@ fn momentum_period_returns_the_body_momentum_to_its_start() {
             .is_none()
     );
 }
+
+#[test]
+fn exact_flow_of_a_nearly_symmetric_flat_body_keeps_its_digits() {
+    // 1 : 1000 : 1001 — inverse-moment differences and 1 − I₂/I₃ by subtraction lose three to
+    // six digits (the flow then differed from the reference by 9.7e-11); written as
+    // (Iⱼ − Iᵢ)/(IᵢIⱼ) it agrees to the reference's own accuracy (its h/2 self-check: ~2e-12).
+    let body = moments(1.0, 1000.0, 1001.0);
+    let m0 = Vector3::new(0.6, 800.0, 600.0);
+    let (em, er) = compare(&body, m0, 10.0, 0.005);
+    eprintln!("flat body 1:1000:1001: |Δm|/|m| = {em:.2e}, max |ΔR| = {er:.2e}");
+    assert!(em < 1e-11 && er < 1e-11, "{em:e} {er:e}");
+}
