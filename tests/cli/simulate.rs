@@ -510,7 +510,7 @@ fn malformed_scene_files_are_rejected_with_their_line() {
         ),
         (
             "scene = \"driven-hoop\"\n[body]\nmesh = \"t-handle.obj\"\n",
-            &["bad.toml:2:", "no rigid body"],
+            &["bad.toml:2:", "does not take its body from a scene file"],
         ),
     ];
     for (text, expect) in cases {

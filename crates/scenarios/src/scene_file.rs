@@ -31,12 +31,19 @@
 //!
 //! # Rigid bodies: the `[body]` table
 //!
-//! The key `body` is reserved for the rigid-body scenes, which will take their inertia from a
-//! mesh file (relative to the scene file) or a primitive of `tumble-inertia`, e.g.
-//! `[body] mesh = "t-handle.obj", mass = 0.3` or `[body] primitive = "box", size = [..]`.
-//! None of the built-in scenes has a rigid body yet, so today a `[body]` table is an error
-//! that says so ([`SceneFileError::BodyNotApplicable`]); [`SceneFile`] will gain a `body`
-//! field when a scene takes one, without changing the rest of the format.
+//! The key `body` is reserved for rigid-body scenes that take their inertia from a mesh file
+//! (relative to the scene file) or a primitive of `tumble-inertia`, e.g.
+//!
+//! ```toml
+//! [body]
+//! mesh = "t-handle.obj"   # or: primitive = "box", size = [0.08, 0.02, 0.02]
+//! mass = 0.05             # or: density = 2700.0
+//! ```
+//!
+//! No built-in scene takes its body from a scene file yet (the rigid-body scenes take their
+//! moments as parameters or build their body themselves), so today a `[body]` table is an
+//! error that says so ([`SceneFileError::BodyNotApplicable`]); [`SceneFile`] will gain a
+//! `body` field when a scene does, without changing the rest of the format.
 //!
 //! # Validation
 //!
@@ -174,10 +181,10 @@ pub enum SceneFileError {
         /// Where the second of the two is.
         at: Location,
     },
-    /// A `[body]` table in a file whose scene has no rigid body.
+    /// A `[body]` table in a file whose scene does not take a body from a scene file.
     #[error(
-        "{at}: `body`: scene `{scene}` has no rigid body; a [body] table (inertia from a mesh \
-         or a primitive) applies only to rigid-body scenes"
+        "{at}: `body`: scene `{scene}` does not take its body from a scene file; a [body] \
+         table (inertia from a mesh or a primitive) is reserved for scenes that do"
     )]
     BodyNotApplicable {
         /// Where the table is.
@@ -328,7 +335,7 @@ impl SceneFile {
     /// # Errors
     /// A [`SceneFileError`] naming the key and its line: TOML syntax, unknown keys, wrong
     /// types, a missing or unknown scene, unknown parameters, values outside their domain,
-    /// invalid run options, a `[body]` table for a scene without a rigid body.
+    /// invalid run options, a `[body]` table for a scene that takes none.
     pub fn parse(text: &str, origin: &str) -> Result<Self, SceneFileError> {
         let src = Source { origin, text };
         let raw: RawFile = toml::from_str(text).map_err(|e| {
