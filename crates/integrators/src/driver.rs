@@ -330,6 +330,9 @@ impl<'a> Driver<'a> {
             return Ok(report);
         }
         let mut t = self.t0;
+        // The state at the start of the current step, for the error report if it fails
+        // (allocated once per run).
+        let mut before = state.clone();
         for k in 0..n {
             if self.cancelled() {
                 report.status = Status::Cancelled;
@@ -348,12 +351,13 @@ impl<'a> Driver<'a> {
                 self.t0 + (k + 1) as f64 * h
             };
             let hk = t_next - t;
+            before.copy_from(state);
             stepper.step(problem, t, state, hk)?;
             if !state.is_finite() {
                 return Err(Error::NonFinite {
                     t,
                     h: hk,
-                    state: state.to_vec(),
+                    state: before.to_vec(),
                 });
             }
             report.steps += 1;
@@ -414,6 +418,7 @@ impl<'a> Driver<'a> {
         let q = stepper.error_order();
         let controller = stepper.controller();
         let mut t = self.t0;
+        let mut before = state.clone();
         let mut h = stepper.initial_step(problem, t, state, self.h_max, &tol);
         let mut err_prev = 1e-4_f64;
         let mut after_reject = false;
@@ -453,12 +458,13 @@ impl<'a> Driver<'a> {
             let err = stepper.attempt(problem, t, state, h, &tol)?;
             if err.is_finite() && err <= 1.0 {
                 let t_next = if last { self.t_end } else { t + h };
+                before.copy_from(state);
                 stepper.accept(problem, t, state, h);
                 if !state.is_finite() {
                     return Err(Error::NonFinite {
                         t,
                         h,
-                        state: state.to_vec(),
+                        state: before.to_vec(),
                     });
                 }
                 report.steps += 1;

@@ -29,6 +29,12 @@ pub trait State: Clone {
     fn is_finite(&self) -> bool;
     /// The state's numbers, flattened, for error reports (allocates; only on failure paths).
     fn to_vec(&self) -> Vec<f64>;
+    /// Overwrites `self` with `other` (same dimension). Drivers keep the state at the start of
+    /// each step this way, to report it if the step fails; heap-backed states override it so
+    /// that no step allocates.
+    fn copy_from(&mut self, other: &Self) {
+        *self = other.clone();
+    }
 }
 
 /// A state stored as a flat array of `f64`: the vector-space operations of Runge–Kutta
@@ -74,6 +80,13 @@ impl State for DVector<f64> {
     }
     fn to_vec(&self) -> Vec<f64> {
         self.as_slice().to_vec()
+    }
+    fn copy_from(&mut self, other: &Self) {
+        if self.len() == other.len() {
+            self.copy_from_slice(other.as_slice());
+        } else {
+            *self = other.clone();
+        }
     }
 }
 

@@ -152,6 +152,9 @@ fn a_blow_up_is_a_non_finite_error_with_time_and_state() {
         Error::NonFinite { t, state, .. } => {
             assert!(t > 0.9 && t < 1.1, "{t}");
             assert_eq!(state.len(), 1);
+            // The state reported is the one at the start of the failing step: finite, and on
+            // the exact solution 1/(1 − t) to the method's accuracy.
+            assert!(state[0].is_finite() && state[0] > 1.0, "{state:?}");
         }
         other => panic!("expected NonFinite, got {other}"),
     }
