@@ -35,7 +35,8 @@ pub struct SceneInfo {
     pub integrators: &'static [&'static str],
     /// Default integrator.
     pub default_integrator: &'static str,
-    /// Default fixed step (s), or tolerance for an adaptive default integrator.
+    /// Default fixed step (s) for fixed-step integrators (adaptive ones default to a tolerance of
+    /// 1e-10).
     pub default_step: f64,
     /// Default horizon (s).
     pub default_t_end: f64,
@@ -256,6 +257,25 @@ pub trait Scene: Sync {
         options: &RunOptions,
         recorder: &mut dyn Recorder,
     ) -> Result<RunSummary, SceneError>;
+}
+
+/// The unit quaternion of a rotation matrix with its sign chosen continuous along a run (`q` and
+/// `−q` are the same rotation): the first has `w ≥ 0`, each later one the sign closer to the
+/// previous one, so that CSV columns and plots do not jump.
+pub(crate) fn continuous_quaternion(
+    rotation: &nalgebra::Matrix3<f64>,
+    previous: &mut Option<nalgebra::Quaternion<f64>>,
+) -> nalgebra::Quaternion<f64> {
+    let q = tumble_kinematics::so3::rotation_to_quat(&nalgebra::Rotation3::from_matrix_unchecked(
+        *rotation,
+    ))
+    .into_inner();
+    let q = match previous {
+        Some(p) if p.coords.dot(&q.coords) < 0.0 => -q,
+        _ => q,
+    };
+    *previous = Some(q);
+    q
 }
 
 /// Integrators that run any first-order system `y' = f(t, y)`.

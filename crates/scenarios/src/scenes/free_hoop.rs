@@ -21,7 +21,8 @@
 //!
 //! # Output
 //!
-//! Coordinates `qw, qx, qy, qz` (the unit quaternion of `R`, `w ≥ 0`) and `alpha`; rates
+//! Coordinates `qw, qx, qy, qz` (the unit quaternion of `R`, `w ≥ 0` at the start and the sign
+//! continuous along the run) and `alpha`; rates
 //! `omega_x, omega_y, omega_z` (body angular velocity) and `alpha_dot`; diagnostics `energy`,
 //! `energy_rel_err`, `Lx, Ly, Lz` (lab, about the pivot) and `tilt` (`asin |n_z|`, `n = R e_z`).
 //!
@@ -38,14 +39,14 @@ use tumble_integrators::rigid::{
 };
 use tumble_integrators::{Driver, Ode};
 use tumble_kinematics::EulerConvention;
-use tumble_kinematics::so3::{hat, rotation_to_quat};
+use tumble_kinematics::so3::hat;
 
 use super::hoop::{HoopParams, tilt_from_normal};
 use crate::error::SceneError;
 use crate::params::{Domain, ParamSpec, Params};
 use crate::scene::{
     Recorder, Resolved, RowObserver, RunOptions, RunSummary, Scene, SceneInfo, StepControl,
-    run_vector,
+    continuous_quaternion, run_vector,
 };
 
 /// The free hoop on SO(3) × ℝ.
@@ -166,9 +167,16 @@ impl Ode<Flat> for FlatFreeHoop {
     }
 }
 
-/// Writes a row: t, quaternion, α, body ω, α̇, energy, (relative error slot), L, tilt.
-fn write_row(model: &FreeHoop, t: f64, s: &CoupledState<1>, out: &mut [f64]) {
-    let q = rotation_to_quat(&nalgebra::Rotation3::from_matrix_unchecked(s.rotation));
+/// Writes a row: t, quaternion (sign continuous along the run), α, body ω, α̇, energy,
+/// (relative error slot), L, tilt.
+fn write_row(
+    model: &FreeHoop,
+    t: f64,
+    s: &CoupledState<1>,
+    previous: &mut Option<nalgebra::Quaternion<f64>>,
+    out: &mut [f64],
+) {
+    let q = continuous_quaternion(&s.rotation, previous);
     let (omega, qdot) = coupled_velocities(model, &s.q, &s.momentum, &s.p)
         .unwrap_or((Vector3::repeat(f64::NAN), SVector::<f64, 1>::new(f64::NAN)));
     let l = s.spatial_momentum();
@@ -324,7 +332,12 @@ fn run_lgvi(
         FREE_HOOP.columns().len(),
         ENERGY_COLUMN,
         resolved.every,
-        |t, s: &CoupledState<1>, out: &mut [f64]| write_row(model, t, s, out),
+        {
+            let mut previous = None;
+            move |t, s: &CoupledState<1>, out: &mut [f64]| {
+                write_row(model, t, s, &mut previous, out)
+            }
+        },
         recorder,
     );
     let report = Driver::new(0.0, resolved.t_end)?.run_fixed(
@@ -361,7 +374,10 @@ impl Scene for FreeHoopScene {
             &resolved,
             info.columns().len(),
             ENERGY_COLUMN,
-            |t, y, out| write_row(&model, t, &unflatten(y), out),
+            {
+                let mut previous = None;
+                move |t, y, out| write_row(&model, t, &unflatten(y), &mut previous, out)
+            },
             &mut [],
             recorder,
         )

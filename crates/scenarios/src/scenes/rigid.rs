@@ -21,7 +21,8 @@
 //!
 //! # Output
 //!
-//! Coordinates `qw, qx, qy, qz` (unit quaternion of `R`, `w ≥ 0`), rates `omega_x, omega_y,
+//! Coordinates `qw, qx, qy, qz` (unit quaternion of `R`, `w ≥ 0` at the start, sign continuous
+//! along the run), rates `omega_x, omega_y,
 //! omega_z` (body angular velocity), diagnostics `energy, energy_rel_err, Lx, Ly, Lz` (lab) and,
 //! for free bodies, `exact_err`.
 //!
@@ -37,13 +38,13 @@ use tumble_integrators::rigid::{
     split4, split6, split8,
 };
 use tumble_integrators::{Driver, Ode};
-use tumble_kinematics::so3::{exp, hat, rotation_to_quat};
+use tumble_kinematics::so3::{exp, hat};
 
 use crate::error::SceneError;
 use crate::params::{Domain, ParamSpec, Params};
 use crate::scene::{
     Recorder, Resolved, RowObserver, RunOptions, RunSummary, Scene, SceneInfo, StepControl,
-    VECTOR_INTEGRATORS, run_vector,
+    VECTOR_INTEGRATORS, continuous_quaternion, run_vector,
 };
 
 /// Flattened state `(R column-major, m)`.
@@ -90,9 +91,10 @@ fn write_row<B: RigidBody>(
     exact: Option<&ExactFlow>,
     t: f64,
     s: &RigidBodyState,
+    previous: &mut Option<nalgebra::Quaternion<f64>>,
     out: &mut [f64],
 ) {
-    let q = rotation_to_quat(&Rotation3::from_matrix_unchecked(s.rotation));
+    let q = continuous_quaternion(&s.rotation, previous);
     let omega = body.body().omega(&s.momentum);
     let l = s.rotation * s.momentum;
     let head = [
@@ -134,8 +136,9 @@ fn run_rigid<B: RigidBody + Copy>(
     recorder: &mut dyn Recorder,
 ) -> Result<RunSummary, SceneError> {
     let columns = info.columns().len();
-    let row = |t: f64, s: &RigidBodyState, out: &mut [f64]| {
-        write_row(&body, exact.as_ref(), t, s, out);
+    let mut previous = None;
+    let mut row = move |t: f64, s: &RigidBodyState, out: &mut [f64]| {
+        write_row(&body, exact.as_ref(), t, s, &mut previous, out);
     };
     let name = resolved.integrator.as_str();
     if VECTOR_INTEGRATORS.contains(&name) {
