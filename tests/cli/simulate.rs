@@ -375,6 +375,17 @@ fn non_physical_and_non_finite_parameters_are_rejected() {
         &["simulate", "driven-hoop", "--set", "a=inf", "-o", "x.csv"],
         &["`a` = inf", "finite"],
     );
+    // Inertia that no body can have: a non-positive moment, and the triangle inequality.
+    fails(
+        &[],
+        &["simulate", "free-body", "--set", "I2=0", "-o", "x.csv"],
+        &["`I2` = 0", "positive"],
+    );
+    fails(
+        &[],
+        &["simulate", "heavy-top", "--set", "I3=20", "-o", "x.csv"],
+        &["`I1, I2, I3` = 20", "I1 + I2 >= I3"],
+    );
 }
 
 #[test]

@@ -330,6 +330,21 @@ pub static FREE_BODY: SceneInfo = SceneInfo {
     rate_names: &["omega_x", "omega_y", "omega_z"],
 };
 
+/// The body with principal moments `moments`; a non-physical inertia (a moment not positive, or
+/// the triangle inequality `I1 + I2 ≥ I3` violated) is a parameter error naming I1, I2, I3.
+fn inertia_body(moments: Vector3<f64>) -> Result<FreeRigidBody, SceneError> {
+    FreeRigidBody::from_principal_moments(moments).map_err(|e| match e {
+        tumble_integrators::Error::InvalidParameter { value, reason, .. } => {
+            SceneError::Model(crate::error::ModelError::InvalidParameter {
+                name: "I1, I2, I3".into(),
+                value,
+                reason,
+            })
+        }
+        other => SceneError::Integration(other),
+    })
+}
+
 fn check_momentum(scene: &str, m: &Vector3<f64>) -> Result<(), SceneError> {
     if m.norm() > 0.0 {
         Ok(())
@@ -361,7 +376,7 @@ impl Scene for FreeBodyScene {
         let info = self.info();
         let resolved = options.resolve(info)?;
         let moments = Vector3::new(params.get("I1")?, params.get("I2")?, params.get("I3")?);
-        let body = FreeRigidBody::from_principal_moments(moments)?;
+        let body = inertia_body(moments)?;
         let m0 = Vector3::new(params.get("m1")?, params.get("m2")?, params.get("m3")?);
         check_momentum(info.name, &m0)?;
         let r0 = Rotation3::identity();
@@ -525,7 +540,7 @@ impl HeavyTopScene {
     /// Invalid parameters (non-physical inertia).
     pub fn top_and_state(params: &Params) -> Result<(HeavyTop, RigidBodyState), SceneError> {
         let moments = Vector3::new(params.get("I1")?, params.get("I2")?, params.get("I3")?);
-        let body = FreeRigidBody::from_principal_moments(moments)?;
+        let body = inertia_body(moments)?;
         let top = HeavyTop::new(body, params.get("mgl")?, Vector3::z())?;
         let r0 = exp(&Vector3::new(params.get("tilt0")?, 0.0, 0.0));
         let w0 = Vector3::new(0.0, 0.0, params.get("spin0")?);
