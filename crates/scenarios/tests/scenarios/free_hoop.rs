@@ -209,7 +209,11 @@ fn free_hoop_scene_runs_with_lgvi_and_with_gauss() {
             summary.max_energy_rel_err
         );
         // The quaternion's sign is continuous along the run (no q → −q jumps).
-        assert!(rows.0.windows(2).all(|w| (1..5).map(|i| w[0][i] * w[1][i]).sum::<f64>() > 0.9));
+        assert!(
+            rows.0
+                .windows(2)
+                .all(|w| (1..5).map(|i| w[0][i] * w[1][i]).sum::<f64>() > 0.9)
+        );
         // Quaternion stays unit.
         assert!(rows.0.iter().all(|r| {
             ((r[1] * r[1] + r[2] * r[2] + r[3] * r[3] + r[4] * r[4]) - 1.0).abs() < 1e-12
