@@ -23,6 +23,7 @@ pub mod params;
 pub mod scene;
 pub mod scene_file;
 pub mod scenes;
+pub mod sweep;
 
 pub use error::{ModelError, SceneError};
 pub use lagrangian::{EulerLagrange, Lagrangian, LagrangianOde};

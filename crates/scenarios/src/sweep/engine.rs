@@ -1,0 +1,550 @@
+//! Running a sweep's points in parallel into a folder's journal, resuming, merging shards.
+
+use std::panic::{AssertUnwindSafe, catch_unwind};
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::mpsc;
+use std::time::{Duration, Instant};
+
+use rayon::prelude::*;
+
+use super::definition::SweepDefinition;
+use super::journal::{self, DEFINITION, JOURNAL, PointRow, Status};
+use super::metrics::MetricRecorder;
+use super::{Shard, SweepError};
+
+/// How to run a sweep.
+#[derive(Debug, Clone, Copy)]
+pub struct RunConfig<'a> {
+    /// Worker threads (≥ 1).
+    pub threads: usize,
+    /// The part of the sweep to run.
+    pub shard: Shard,
+    /// Continue the sweep the folder holds (or start it if there is none).
+    pub resume: bool,
+    /// Set to stop starting new points; the run then returns what finished, incomplete.
+    pub cancel: Option<&'a AtomicBool>,
+}
+
+impl Default for RunConfig<'_> {
+    fn default() -> Self {
+        RunConfig {
+            threads: 1,
+            shard: Shard::ALL,
+            resume: false,
+            cancel: None,
+        }
+    }
+}
+
+/// Where a sweep stands, after each finished point.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Progress {
+    /// Points in this shard.
+    pub total: u64,
+    /// Points finished (resumed from the journal included).
+    pub finished: u64,
+    /// Points found finished in the journal when the run started.
+    pub resumed: u64,
+    /// Points that failed or panicked so far.
+    pub failed: u64,
+}
+
+/// What a run (or a merge) produced.
+#[derive(Debug, Clone)]
+pub struct SweepReport {
+    /// Rows of the finished points of the shard, in index order.
+    pub rows: Vec<PointRow>,
+    /// The shard's points.
+    pub total: u64,
+    /// Points computed by this run.
+    pub computed: u64,
+    /// Points found finished in the journal.
+    pub resumed: u64,
+    /// Wall time of the computation (reading and writing the journal included).
+    pub elapsed: Duration,
+    /// Threads used.
+    pub threads: usize,
+}
+
+impl SweepReport {
+    /// Whether every point of the shard has finished.
+    #[must_use]
+    pub fn complete(&self) -> bool {
+        self.rows.len() as u64 == self.total
+    }
+
+    /// The rows of points that failed or panicked.
+    pub fn failures(&self) -> impl Iterator<Item = &PointRow> {
+        self.rows.iter().filter(|r| r.status != Status::Ok)
+    }
+
+    /// Points computed per second of wall time by this run (`None` when it computed none).
+    #[must_use]
+    pub fn points_per_second(&self) -> Option<f64> {
+        let s = self.elapsed.as_secs_f64();
+        (self.computed > 0 && s > 0.0).then(|| self.computed as f64 / s)
+    }
+}
+
+/// Computes point `index` of `def`: its row, whatever happens (failures and panics included).
+#[must_use]
+pub fn run_point(def: &SweepDefinition, index: u64) -> PointRow {
+    let values = def.point(index);
+    guarded(index, values.clone(), def.metrics.len(), || {
+        metrics_of(def, &values)
+    })
+}
+
+/// The row of point `index` whose metrics `compute` returns: `failed` with its error, or
+/// `panicked` with the panic's message when it panics.
+pub(crate) fn guarded(
+    index: u64,
+    values: Vec<f64>,
+    metrics: usize,
+    compute: impl FnOnce() -> Result<Vec<Option<f64>>, String>,
+) -> PointRow {
+    let (metrics, status, reason) = match catch_unwind(AssertUnwindSafe(compute)) {
+        Ok(Ok(values)) => (values, Status::Ok, String::new()),
+        Ok(Err(reason)) => (vec![None; metrics], Status::Failed, reason),
+        Err(payload) => {
+            let message = payload
+                .downcast_ref::<&str>()
+                .map(|s| (*s).to_string())
+                .or_else(|| payload.downcast_ref::<String>().cloned())
+                .unwrap_or_else(|| "a panic without a message".to_string());
+            (
+                vec![None; metrics],
+                Status::Panicked,
+                format!("panic: {message}"),
+            )
+        }
+    };
+    PointRow {
+        index,
+        values,
+        metrics,
+        status,
+        reason,
+    }
+}
+
+/// Runs the scene at `values` and reduces the run to the definition's metrics.
+fn metrics_of(def: &SweepDefinition, values: &[f64]) -> Result<Vec<Option<f64>>, String> {
+    let mut params = def.params.clone();
+    for (axis, &v) in def.axes.iter().zip(values) {
+        params.set(axis.parameter, v).map_err(|e| e.to_string())?;
+    }
+    let mut recorder = MetricRecorder::new(def.scene, &params, &def.metrics, def.tilt_threshold)
+        .map_err(|e| e.to_string())?;
+    let summary = def
+        .scene
+        .simulate(&params, &def.run_options(), &mut recorder)
+        .map_err(|e| e.to_string())?;
+    if let Some(failure) = recorder.failure() {
+        return Err(failure.to_string());
+    }
+    if !(summary.t >= def.t_end) {
+        return Err(format!(
+            "the run stopped at t = {} before the horizon t_end = {}",
+            summary.t, def.t_end
+        ));
+    }
+    Ok(recorder.finish(&def.metrics, summary.max_energy_rel_err))
+}
+
+/// Computes `pending` on a pool of `threads` workers, handing each row to `sink` on the
+/// calling thread as soon as it is done. Stops starting points when `cancel` is set or `sink`
+/// fails (whose error is returned).
+fn execute(
+    pending: &[u64],
+    threads: usize,
+    cancel: Option<&AtomicBool>,
+    compute: &(dyn Fn(u64) -> PointRow + Sync),
+    sink: &mut dyn FnMut(PointRow) -> Result<(), SweepError>,
+) -> Result<(), SweepError> {
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .thread_name(|i| format!("tumble-sweep-{i}"))
+        .build()
+        .map_err(|e| SweepError::Threads {
+            threads,
+            reason: e.to_string(),
+        })?;
+    let stop = AtomicBool::new(false);
+    let stopped =
+        || stop.load(Ordering::Relaxed) || cancel.is_some_and(|c| c.load(Ordering::Relaxed));
+    let (tx, rx) = mpsc::channel::<PointRow>();
+    std::thread::scope(|scope| {
+        let stopped = &stopped;
+        scope.spawn(move || {
+            pool.install(|| {
+                pending
+                    .par_iter()
+                    .with_max_len(1)
+                    .for_each_with(tx, |tx, &index| {
+                        if !stopped() {
+                            // The receiver is gone only after an error; the point is dropped.
+                            let _ = tx.send(compute(index));
+                        }
+                    });
+            });
+        });
+        let mut result = Ok(());
+        for row in rx {
+            if let Err(e) = sink(row) {
+                stop.store(true, Ordering::Relaxed);
+                result = Err(e);
+                break;
+            }
+        }
+        result
+    })
+}
+
+/// Prepares `dir` for `def`: returns the journal writer and the rows already finished.
+fn open_folder(
+    def: &SweepDefinition,
+    dir: &Path,
+    shard: Shard,
+    resume: bool,
+) -> Result<(journal::Writer, Vec<Option<PointRow>>), SweepError> {
+    std::fs::create_dir_all(dir).map_err(|source| SweepError::Io {
+        path: dir.to_path_buf(),
+        what: "cannot create the output folder",
+        source,
+    })?;
+    let text = def.to_toml();
+    let journal_path = dir.join(JOURNAL);
+    let definition_path = dir.join(DEFINITION);
+    if journal_path.exists() {
+        if !resume {
+            return Err(SweepError::Exists {
+                dir: dir.to_path_buf(),
+                found: JOURNAL,
+            });
+        }
+        let stored =
+            std::fs::read_to_string(&definition_path).map_err(|source| SweepError::Io {
+                path: definition_path.clone(),
+                what: "cannot read the sweep's definition",
+                source,
+            })?;
+        if stored != text {
+            return Err(SweepError::DifferentSweep {
+                dir: dir.to_path_buf(),
+                reason: first_difference(&stored, &text),
+            });
+        }
+        let contents = journal::read(&journal_path, def, &text)?;
+        if contents.shard != shard {
+            return Err(SweepError::Shard {
+                spec: shard.to_string(),
+                reason: format!(
+                    "{} holds shard {} of this sweep, not {shard}",
+                    dir.display(),
+                    contents.shard
+                ),
+            });
+        }
+        let writer = journal::Writer::append(&journal_path, contents.complete_len)?;
+        return Ok((writer, contents.rows));
+    }
+    for stale in [super::journal::JOURNAL, "results.csv"] {
+        if dir.join(stale).exists() {
+            return Err(SweepError::Exists {
+                dir: dir.to_path_buf(),
+                found: if stale == "results.csv" {
+                    "results.csv"
+                } else {
+                    JOURNAL
+                },
+            });
+        }
+    }
+    write_whole(&definition_path, text.as_bytes())?;
+    let writer = journal::Writer::create(&journal_path, def, &text, shard)?;
+    Ok((writer, vec![None; def.points() as usize]))
+}
+
+/// Writes `bytes` to `path` through a temporary file renamed when complete.
+fn write_whole(path: &Path, bytes: &[u8]) -> Result<(), SweepError> {
+    let name = path
+        .file_name()
+        .map_or_else(|| "file".into(), |n| n.to_string_lossy().into_owned());
+    let temp = path.with_file_name(format!(".{name}.partial"));
+    std::fs::write(&temp, bytes)
+        .and_then(|()| std::fs::rename(&temp, path))
+        .map_err(|source| {
+            let _ = std::fs::remove_file(&temp);
+            SweepError::Io {
+                path: path.to_path_buf(),
+                what: "cannot write",
+                source,
+            }
+        })
+}
+
+/// The first line where two definition texts differ, for messages.
+fn first_difference(stored: &str, new: &str) -> String {
+    let (mut a, mut b) = (stored.lines(), new.lines());
+    let mut line = 1;
+    loop {
+        match (a.next(), b.next()) {
+            (Some(x), Some(y)) if x == y => line += 1,
+            (x, y) => {
+                return format!(
+                    "its sweep.toml line {line} is `{}`, this sweep's is `{}`",
+                    x.unwrap_or("(end)"),
+                    y.unwrap_or("(end)")
+                );
+            }
+        }
+    }
+}
+
+/// Runs the points of `config.shard` of `def` that `dir`'s journal does not hold, appending
+/// each row as it finishes; returns the shard's rows in index order.
+///
+/// Without `config.resume` the folder must not hold a sweep yet (`journal.csv` or
+/// `results.csv`); with it, a folder that holds one must hold this one (same `sweep.toml`,
+/// same shard), and a folder that holds none starts afresh. `progress` is called on the
+/// calling thread after each finished point (and once at the start).
+///
+/// # Errors
+/// The folder or journal cannot be written, holds another sweep or shard, or its journal is
+/// damaged; the worker threads cannot be started. Failing points are not errors.
+pub fn run(
+    def: &SweepDefinition,
+    dir: &Path,
+    config: &RunConfig<'_>,
+    progress: &mut dyn FnMut(&Progress),
+) -> Result<SweepReport, SweepError> {
+    let start = Instant::now();
+    let threads = config.threads.max(1);
+    let (mut writer, mut rows) = open_folder(def, dir, config.shard, config.resume)?;
+    let total = config.shard.size(def.points());
+    let pending: Vec<u64> = (0..def.points())
+        .filter(|&i| config.shard.contains(i) && rows[i as usize].is_none())
+        .collect();
+    let resumed = total - pending.len() as u64;
+    let mut state = Progress {
+        total,
+        finished: resumed,
+        resumed,
+        failed: rows
+            .iter()
+            .flatten()
+            .filter(|r| r.status != Status::Ok)
+            .count() as u64,
+    };
+    progress(&state);
+    let mut computed = 0;
+    let result = execute(
+        &pending,
+        threads,
+        config.cancel,
+        &|index| run_point(def, index),
+        &mut |row| {
+            writer.push(def, &row)?;
+            computed += 1;
+            state.finished += 1;
+            if row.status != Status::Ok {
+                state.failed += 1;
+            }
+            let index = row.index as usize;
+            rows[index] = Some(row);
+            progress(&state);
+            Ok(())
+        },
+    );
+    let flushed = writer.flush();
+    result?;
+    flushed?;
+    Ok(SweepReport {
+        rows: rows.into_iter().flatten().collect(),
+        total,
+        computed,
+        resumed,
+        elapsed: start.elapsed(),
+        threads,
+    })
+}
+
+/// Joins the folders of the `N` shards of one sweep into `out` as an unsharded run would
+/// have written it (`sweep.toml` and a complete journal); returns the definition and every
+/// row in index order.
+///
+/// # Errors
+/// [`SweepError::Merge`] when the folders hold different sweeps, a shard is missing, repeated
+/// or incomplete; errors reading them; `out` already holding a sweep.
+pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<(SweepDefinition, SweepReport), SweepError> {
+    let start = Instant::now();
+    let Some(first) = dirs.first() else {
+        return Err(SweepError::Merge("no folders to merge".into()));
+    };
+    let read_text = |dir: &Path| {
+        let path = dir.join(DEFINITION);
+        std::fs::read_to_string(&path).map_err(|source| SweepError::Io {
+            path,
+            what: "cannot read the sweep's definition (is this a sweep folder?)",
+            source,
+        })
+    };
+    let text = read_text(first)?;
+    let def = SweepDefinition::parse(&text, &first.join(DEFINITION).display().to_string(), &[])?;
+    if def.to_toml() != text {
+        return Err(SweepError::DifferentSweep {
+            dir: first.clone(),
+            reason: "its sweep.toml is not the resolved form tumble writes (edited by hand?)"
+                .into(),
+        });
+    }
+    let mut rows: Vec<Option<PointRow>> = vec![None; def.points() as usize];
+    let mut seen: Vec<Option<PathBuf>> = Vec::new();
+    let mut count = None;
+    for dir in dirs {
+        let other = read_text(dir)?;
+        if other != text {
+            return Err(SweepError::Merge(format!(
+                "{} and {} hold different sweeps: {}",
+                first.display(),
+                dir.display(),
+                first_difference(&text, &other)
+            )));
+        }
+        let contents = journal::read(&dir.join(JOURNAL), &def, &text)?;
+        let shard = contents.shard;
+        let n = *count.get_or_insert(shard.count);
+        if shard.count != n {
+            return Err(SweepError::Merge(format!(
+                "{} is shard {shard}, but {} is one of {n} shards",
+                dir.display(),
+                first.display()
+            )));
+        }
+        seen.resize(n as usize, None);
+        if let Some(previous) = &seen[(shard.index - 1) as usize] {
+            return Err(SweepError::Merge(format!(
+                "{} and {} are both shard {shard}",
+                previous.display(),
+                dir.display()
+            )));
+        }
+        seen[(shard.index - 1) as usize] = Some(dir.clone());
+        let finished = contents.rows.iter().flatten().count() as u64;
+        if finished != shard.size(def.points()) {
+            return Err(SweepError::Merge(format!(
+                "{}: shard {shard} is incomplete ({finished} of {} points); finish it with \
+                 `tumble sweep {} -o {} --shard {shard} --resume`",
+                dir.display(),
+                shard.size(def.points()),
+                dir.join(DEFINITION).display(),
+                dir.display()
+            )));
+        }
+        for row in contents.rows.into_iter().flatten() {
+            let index = row.index as usize;
+            rows[index] = Some(row);
+        }
+    }
+    let missing: Vec<String> = seen
+        .iter()
+        .enumerate()
+        .filter(|(_, d)| d.is_none())
+        .map(|(k, _)| format!("{}/{}", k + 1, seen.len()))
+        .collect();
+    if !missing.is_empty() {
+        return Err(SweepError::Merge(format!(
+            "missing shard{} {}",
+            if missing.len() == 1 { "" } else { "s" },
+            missing.join(", ")
+        )));
+    }
+    // Write the merged folder: definition, then a complete journal in index order.
+    let (mut writer, _) = open_folder(&def, out, Shard::ALL, false)?;
+    let rows: Vec<PointRow> = rows.into_iter().flatten().collect();
+    for row in &rows {
+        writer.push(&def, row)?;
+    }
+    writer.flush()?;
+    let total = def.points();
+    Ok((
+        def,
+        SweepReport {
+            rows,
+            total,
+            computed: 0,
+            resumed: total,
+            elapsed: start.elapsed(),
+            threads: 0,
+        },
+    ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn row(index: u64) -> PointRow {
+        PointRow {
+            index,
+            values: vec![index as f64],
+            metrics: vec![Some(2.0 * index as f64)],
+            status: Status::Ok,
+            reason: String::new(),
+        }
+    }
+
+    #[test]
+    fn every_point_reaches_the_sink_once_whatever_the_threads() {
+        let pending: Vec<u64> = (0..50).collect();
+        for threads in [1, 2, 3] {
+            let mut seen = Vec::new();
+            execute(&pending, threads, None, &row, &mut |r| {
+                seen.push(r.index);
+                Ok(())
+            })
+            .unwrap();
+            seen.sort_unstable();
+            assert_eq!(seen, pending, "{threads} threads");
+        }
+    }
+
+    #[test]
+    fn a_failing_sink_stops_the_workers_and_returns_its_error() {
+        let pending: Vec<u64> = (0..1000).collect();
+        let mut n = 0;
+        let e = execute(&pending, 2, None, &row, &mut |_| {
+            n += 1;
+            if n == 3 {
+                Err(SweepError::Merge("disk full".into()))
+            } else {
+                Ok(())
+            }
+        })
+        .unwrap_err();
+        assert!(e.to_string().contains("disk full"));
+        assert_eq!(n, 3);
+    }
+
+    #[test]
+    fn cancelling_stops_new_points() {
+        let pending: Vec<u64> = (0..200).collect();
+        let cancel = AtomicBool::new(false);
+        let mut seen = 0;
+        let slow = |i| {
+            std::thread::sleep(Duration::from_millis(2));
+            row(i)
+        };
+        execute(&pending, 1, Some(&cancel), &slow, &mut |_| {
+            seen += 1;
+            if seen == 5 {
+                cancel.store(true, Ordering::Relaxed);
+            }
+            Ok(())
+        })
+        .unwrap();
+        assert!((5..200).contains(&seen), "{seen}");
+    }
+}

@@ -1,0 +1,615 @@
+//! Metrics of one sweep point, computed by a [`Recorder`] while the scene integrates: nothing
+//! of the trajectory is kept but a window of the last five samples.
+//!
+//! # Hoop metrics (scenes with a `tilt` column)
+//!
+//! The tilt `τ = asin|n_z|` is sampled at the integrator's steps. Its extremes and threshold
+//! crossings fall between samples, and taking the largest sample would make `max_tilt` depend
+//! on the step (by `½ τ'' δt²` at the maximum, about 1e-5 rad at `δt = 0.01` and a few rad/s),
+//! which is not a property of the motion. So the signal `s = sin τ = |n_z|` (smooth wherever
+//! `n_z ≠ 0`, also near a horizontal hoop where `τ` itself has unbounded curvature) is
+//! interpolated by the polynomial through the five samples around each event (Newton divided
+//! differences on the actual sample times, fourth degree, error `O(δt⁵)`):
+//!
+//! * `max_tilt`: at every sample that is a local maximum of `s`, the maximum of the
+//!   interpolant over the two neighbouring intervals (the root of its derivative, found by
+//!   bisection); the result is the largest of these and of every sample, as `asin(min(s, 1))`.
+//! * `final_tilt`: the tilt of the last sample (`t = t_end` exactly).
+//! * `time_tilt_exceeds`: the first time `τ > τ_c` (the file's `tilt_threshold`), the root of
+//!   `p(t) = sin τ_c` in the interval where the samples first cross it; empty when never.
+//!
+//! # Other metrics
+//!
+//! * `max_energy_rel_err`: the run's largest `|E − E₀|/|E₀|` over every step.
+//! * `flips` (`free-body`, `dzhanibekov`): the number of sign changes of `ω · e₂`, the body
+//!   angular velocity's component on the intermediate principal axis — each is one flip of
+//!   the body (the T-handle's half turn) — as in the scenes' flip-period test.
+//!
+//! A row with a non-finite value stops the run: the point fails with the time and column.
+
+use std::fmt;
+
+use nalgebra::Vector3;
+use tumble_integrators::Flow;
+
+use crate::error::SceneError;
+use crate::params::Params;
+use crate::scene::{Recorder, Scene, SceneInfo};
+use crate::scenes::rigid::DzhanibekovScene;
+
+/// A quantity recorded for every point of a sweep.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum Metric {
+    /// Largest tilt of the hoop over the horizon (rad), interpolated between steps.
+    MaxTilt,
+    /// Tilt at the end of the horizon (rad).
+    FinalTilt,
+    /// First time the tilt exceeds the threshold (s); empty when it never does.
+    TimeTiltExceeds,
+    /// Largest relative energy error over every step.
+    MaxEnergyRelErr,
+    /// Sign changes of the body angular velocity on the intermediate principal axis.
+    Flips,
+}
+
+impl Metric {
+    /// Every metric, in the order the documentation lists them.
+    pub const ALL: [Metric; 5] = [
+        Metric::MaxTilt,
+        Metric::FinalTilt,
+        Metric::TimeTiltExceeds,
+        Metric::MaxEnergyRelErr,
+        Metric::Flips,
+    ];
+
+    /// Its name in sweep files and CSV headers.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Metric::MaxTilt => "max_tilt",
+            Metric::FinalTilt => "final_tilt",
+            Metric::TimeTiltExceeds => "time_tilt_exceeds",
+            Metric::MaxEnergyRelErr => "max_energy_rel_err",
+            Metric::Flips => "flips",
+        }
+    }
+
+    /// Its SI unit (empty when dimensionless).
+    #[must_use]
+    pub fn unit(self) -> &'static str {
+        match self {
+            Metric::MaxTilt | Metric::FinalTilt => "rad",
+            Metric::TimeTiltExceeds => "s",
+            Metric::MaxEnergyRelErr | Metric::Flips => "",
+        }
+    }
+
+    /// What it is, in a few words (plot labels).
+    #[must_use]
+    pub fn description(self) -> &'static str {
+        match self {
+            Metric::MaxTilt => "maximum tilt",
+            Metric::FinalTilt => "final tilt",
+            Metric::TimeTiltExceeds => "time the tilt first exceeds the threshold",
+            Metric::MaxEnergyRelErr => "maximum relative energy error",
+            Metric::Flips => "number of flips",
+        }
+    }
+
+    /// The metric called `name`.
+    #[must_use]
+    pub fn from_name(name: &str) -> Option<Metric> {
+        Metric::ALL.into_iter().find(|m| m.name() == name)
+    }
+
+    /// Whether its values are whole numbers (written without a decimal point).
+    #[must_use]
+    pub fn is_count(self) -> bool {
+        matches!(self, Metric::Flips)
+    }
+
+    /// Whether it needs the hoop's `tilt` column.
+    #[must_use]
+    pub fn needs_tilt(self) -> bool {
+        matches!(
+            self,
+            Metric::MaxTilt | Metric::FinalTilt | Metric::TimeTiltExceeds
+        )
+    }
+
+    /// Why the metric does not apply to `info`'s scene, or `None` when it does.
+    #[must_use]
+    pub fn not_applicable(self, info: &SceneInfo) -> Option<String> {
+        let columns = info.columns();
+        if self.needs_tilt() && !columns.iter().any(|c| c == "tilt") {
+            return Some(format!(
+                "`{}` needs a hoop scene (a `tilt` column); scene `{}` has none",
+                self.name(),
+                info.name
+            ));
+        }
+        if self == Metric::Flips && !FLIP_SCENES.contains(&info.name) {
+            return Some(format!(
+                "`flips` applies to the torque-free bodies ({}), not to scene `{}`",
+                FLIP_SCENES.join(", "),
+                info.name
+            ));
+        }
+        None
+    }
+}
+
+impl fmt::Display for Metric {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// Scenes whose flips can be counted: torque-free bodies with a known inertia.
+const FLIP_SCENES: [&str; 2] = ["free-body", "dzhanibekov"];
+
+/// The body-frame intermediate principal axis of a torque-free scene's body.
+///
+/// # Errors
+/// Invalid parameters, or principal moments without a strict middle one (the axis is then
+/// not defined).
+fn intermediate_axis(info: &SceneInfo, params: &Params) -> Result<Vector3<f64>, SceneError> {
+    let (moments, axes) = match info.name {
+        "dzhanibekov" => {
+            let (body, _) = DzhanibekovScene::body_and_state(params)?;
+            (body.principal_moments(), *body.principal_axes().matrix())
+        }
+        _ => {
+            let moments = Vector3::new(params.get("I1")?, params.get("I2")?, params.get("I3")?);
+            (moments, nalgebra::Matrix3::identity())
+        }
+    };
+    let middle = (0..3).find(|&k| {
+        let (a, b) = (moments[(k + 1) % 3], moments[(k + 2) % 3]);
+        (a < moments[k] && moments[k] < b) || (b < moments[k] && moments[k] < a)
+    });
+    match middle {
+        Some(k) => Ok(axes.column(k).into_owned()),
+        None => Err(SceneError::InvalidOption {
+            option: "flips",
+            value: f64::NAN,
+            reason: format!(
+                "the principal moments {:?} have no strict middle one: the intermediate axis \
+                 is not defined",
+                moments.as_slice()
+            ),
+        }),
+    }
+}
+
+/// The polynomial through up to five points `(t_j, y_j)` in Newton form, in the variable
+/// `u = (t − t_0)/scale` for conditioning.
+struct Interpolant {
+    n: usize,
+    u: [f64; 5],
+    c: [f64; 5],
+    t0: f64,
+    scale: f64,
+}
+
+impl Interpolant {
+    /// Through `points` (1 to 5, distinct increasing times).
+    fn new(points: &[(f64, f64)]) -> Self {
+        let n = points.len().min(5);
+        let t0 = points[0].0;
+        let scale = (points[n - 1].0 - t0).max(f64::MIN_POSITIVE);
+        let mut u = [0.0; 5];
+        let mut c = [0.0; 5];
+        for j in 0..n {
+            u[j] = (points[j].0 - t0) / scale;
+            c[j] = points[j].1;
+        }
+        // Divided differences, in place: c[j] = y[u_0 … u_j].
+        for level in 1..n {
+            for j in (level..n).rev() {
+                c[j] = (c[j] - c[j - 1]) / (u[j] - u[j - level]);
+            }
+        }
+        Interpolant { n, u, c, t0, scale }
+    }
+
+    /// `(p(t), dp/du)`.
+    fn eval(&self, t: f64) -> (f64, f64) {
+        let x = (t - self.t0) / self.scale;
+        let mut p = self.c[self.n - 1];
+        let mut dp = 0.0;
+        for j in (0..self.n - 1).rev() {
+            dp = dp * (x - self.u[j]) + p;
+            p = p * (x - self.u[j]) + self.c[j];
+        }
+        (p, dp)
+    }
+
+    /// The root of `f` in `[a, b]` by bisection, given `f(a) ≤ 0 < f(b)` or `f(a) ≥ 0 > f(b)`
+    /// (signs as `rising` says), to the last bit of `t`.
+    fn bisect(a: f64, b: f64, rising: bool, f: impl Fn(f64) -> f64) -> f64 {
+        let (mut lo, mut hi) = (a, b);
+        for _ in 0..200 {
+            let mid = 0.5 * (lo + hi);
+            if mid <= lo || mid >= hi {
+                break;
+            }
+            let below = f(mid) <= 0.0;
+            if below == rising {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        0.5 * (lo + hi)
+    }
+
+    /// The largest value of the polynomial on `[a, b]` found at its endpoints and at the
+    /// interior maxima (derivative from `+` to `−`) of the sub-intervals `[a, m]`, `[m, b]`.
+    fn max_on(&self, a: f64, m: f64, b: f64) -> f64 {
+        let mut best = self.eval(a).0.max(self.eval(m).0).max(self.eval(b).0);
+        for (lo, hi) in [(a, m), (m, b)] {
+            if !(hi > lo) {
+                continue;
+            }
+            let (d_lo, d_hi) = (self.eval(lo).1, self.eval(hi).1);
+            if d_lo > 0.0 && d_hi < 0.0 {
+                let t = Self::bisect(lo, hi, false, |t| self.eval(t).1);
+                best = best.max(self.eval(t).0);
+            }
+        }
+        best
+    }
+}
+
+/// The tilt metrics: window of the last five samples of `s = sin τ`, the largest value found,
+/// the first threshold crossing.
+struct TiltTracker {
+    /// Sample `(t, s)` in arrival order, at most five.
+    window: Vec<(f64, f64)>,
+    /// Samples seen.
+    count: u64,
+    /// Largest `s` so far (samples and interpolated maxima).
+    max_s: f64,
+    /// Last tilt sample.
+    last_tilt: f64,
+    /// `sin τ_c`, when the crossing time is recorded.
+    threshold: Option<f64>,
+    /// First crossing time, once found.
+    crossing: Option<f64>,
+    /// Window position `k` of the sample after which the samples first crossed the threshold
+    /// (the crossing in `[t_k, t_{k+1}]` is solved once samples up to `k + 3` have arrived, or
+    /// at the end).
+    pending: Option<usize>,
+}
+
+impl TiltTracker {
+    fn new(threshold: Option<f64>) -> Self {
+        TiltTracker {
+            window: Vec::with_capacity(6),
+            count: 0,
+            max_s: f64::NEG_INFINITY,
+            last_tilt: f64::NAN,
+            threshold: threshold.map(f64::sin),
+            crossing: None,
+            pending: None,
+        }
+    }
+
+    fn push(&mut self, t: f64, tilt: f64) {
+        if let Some(&(last_t, _)) = self.window.last()
+            && !(t > last_t)
+        {
+            // A repeated sample (the driver's end-of-run call at the same time): nothing new.
+            return;
+        }
+        let s = tilt.sin();
+        self.last_tilt = tilt;
+        self.max_s = self.max_s.max(s);
+        if self.window.len() == 5 {
+            self.window.remove(0);
+            if let Some(k) = self.pending.as_mut() {
+                *k -= 1;
+            }
+        }
+        self.window.push((t, s));
+        self.count += 1;
+        let n = self.window.len();
+
+        // Threshold: the first interval where the samples cross it.
+        if let Some(c) = self.threshold
+            && self.crossing.is_none()
+            && self.pending.is_none()
+        {
+            if self.count == 1 && s > c {
+                self.crossing = Some(t);
+            } else if n >= 2 && self.window[n - 2].1 <= c && s > c {
+                self.pending = Some(n - 2);
+            }
+        }
+        if let Some(k) = self.pending
+            && n > k + 3
+        {
+            self.resolve_crossing(k);
+        }
+
+        // A local maximum at the sample two back (its centred five-point stencil is now
+        // complete, or as complete as the start of the run allows).
+        if n >= 3 {
+            self.refine_max(n - 3);
+        }
+    }
+
+    /// Refines a local maximum of the samples at window position `c` (`0 < c < len − 1`).
+    fn refine_max(&mut self, c: usize) {
+        if c == 0 || c + 1 >= self.window.len() {
+            return;
+        }
+        let (prev, mid, next) = (self.window[c - 1].1, self.window[c].1, self.window[c + 1].1);
+        if !(prev <= mid && mid >= next && (prev < mid || mid > next)) {
+            return;
+        }
+        let lo = c.saturating_sub(2);
+        let hi = (c + 2).min(self.window.len() - 1);
+        let p = Interpolant::new(&self.window[lo..=hi]);
+        let best = p.max_on(self.window[c - 1].0, self.window[c].0, self.window[c + 1].0);
+        if best.is_finite() {
+            self.max_s = self.max_s.max(best);
+        }
+    }
+
+    /// Solves `p(t) = sin τ_c` between window samples `k` and `k + 1`, with `p` through the
+    /// whole window (samples `k − 1 … k + 3`, or what the ends of the run leave).
+    fn resolve_crossing(&mut self, k: usize) {
+        let Some(c) = self.threshold else { return };
+        let p = Interpolant::new(&self.window);
+        let (a, b) = (self.window[k].0, self.window[k + 1].0);
+        let t = Interpolant::bisect(a, b, true, |t| p.eval(t).0 - c);
+        self.crossing = Some(t);
+        self.pending = None;
+    }
+
+    /// At the end of the run: the stencils that the last samples leave open.
+    fn finish(&mut self) {
+        let n = self.window.len();
+        if n >= 3 {
+            self.refine_max(n - 2);
+        }
+        if let Some(k) = self.pending {
+            self.resolve_crossing(k);
+        }
+    }
+
+    fn max_tilt(&self) -> f64 {
+        self.max_s.clamp(0.0, 1.0).asin()
+    }
+}
+
+/// Counts sign changes of `ω · e₂`.
+struct FlipCounter {
+    axis: Vector3<f64>,
+    omega_column: usize,
+    sign: Option<f64>,
+    flips: u64,
+}
+
+impl FlipCounter {
+    fn push(&mut self, row: &[f64]) {
+        let w = Vector3::new(
+            row[self.omega_column],
+            row[self.omega_column + 1],
+            row[self.omega_column + 2],
+        );
+        let d = w.dot(&self.axis);
+        if d != 0.0 {
+            let sign = d.signum();
+            if self.sign.is_some_and(|s| s != sign) {
+                self.flips += 1;
+            }
+            self.sign = Some(sign);
+        }
+    }
+}
+
+/// Computes a point's metrics from the rows of its run.
+pub(crate) struct MetricRecorder {
+    columns: Vec<String>,
+    tilt_column: Option<usize>,
+    tilt: Option<TiltTracker>,
+    flips: Option<FlipCounter>,
+    /// Why the run was stopped (a non-finite value).
+    failure: Option<String>,
+}
+
+impl MetricRecorder {
+    /// A recorder for `metrics` of `scene` run with `params`.
+    ///
+    /// # Errors
+    /// The parameters of a torque-free body without a defined intermediate axis (`flips`).
+    pub(crate) fn new(
+        scene: &dyn Scene,
+        params: &Params,
+        metrics: &[Metric],
+        tilt_threshold: Option<f64>,
+    ) -> Result<Self, SceneError> {
+        let info = scene.info();
+        let columns = info.columns();
+        let find = |name: &str| columns.iter().position(|c| c == name);
+        let tilt_column = find("tilt");
+        let tilt = metrics
+            .iter()
+            .any(|m| m.needs_tilt())
+            .then(|| TiltTracker::new(tilt_threshold));
+        let flips = if metrics.contains(&Metric::Flips) {
+            Some(FlipCounter {
+                axis: intermediate_axis(info, params)?,
+                omega_column: find("omega_x").ok_or_else(|| SceneError::InvalidOption {
+                    option: "flips",
+                    value: f64::NAN,
+                    reason: format!("scene `{}` has no omega_x column", info.name),
+                })?,
+                sign: None,
+                flips: 0,
+            })
+        } else {
+            None
+        };
+        Ok(MetricRecorder {
+            columns,
+            tilt_column,
+            tilt,
+            flips,
+            failure: None,
+        })
+    }
+
+    /// Why the run stopped early, if it did.
+    pub(crate) fn failure(&self) -> Option<&str> {
+        self.failure.as_deref()
+    }
+
+    /// The value of `metric` after the run (`None`: not defined, e.g. a threshold never
+    /// crossed). `max_energy_rel_err` is the run summary's.
+    pub(crate) fn finish(
+        &mut self,
+        metrics: &[Metric],
+        max_energy_rel_err: f64,
+    ) -> Vec<Option<f64>> {
+        if let Some(tilt) = &mut self.tilt {
+            tilt.finish();
+        }
+        metrics
+            .iter()
+            .map(|m| match m {
+                Metric::MaxTilt => self.tilt.as_ref().map(TiltTracker::max_tilt),
+                Metric::FinalTilt => self.tilt.as_ref().map(|t| t.last_tilt),
+                Metric::TimeTiltExceeds => self.tilt.as_ref().and_then(|t| t.crossing),
+                Metric::MaxEnergyRelErr => Some(max_energy_rel_err),
+                Metric::Flips => self.flips.as_ref().map(|f| f.flips as f64),
+            })
+            .collect()
+    }
+}
+
+impl Recorder for MetricRecorder {
+    fn row(&mut self, values: &[f64]) -> Flow {
+        if let Some(j) = values.iter().position(|v| !v.is_finite()) {
+            self.failure = Some(format!(
+                "non-finite state at t = {}: {} = {}",
+                values[0],
+                self.columns.get(j).map_or("?", String::as_str),
+                values[j]
+            ));
+            return Flow::Stop;
+        }
+        if let (Some(tilt), Some(j)) = (&mut self.tilt, self.tilt_column) {
+            tilt.push(values[0], values[j]);
+        }
+        if let Some(flips) = &mut self.flips {
+            flips.push(values);
+        }
+        Flow::Continue
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Feeds `tilt(t)` sampled at `t = k h` over `[0, t_end]`.
+    fn track(h: f64, t_end: f64, threshold: Option<f64>, tilt: impl Fn(f64) -> f64) -> TiltTracker {
+        let mut tracker = TiltTracker::new(threshold);
+        let n = (t_end / h).round() as u64;
+        for k in 0..=n {
+            let t = if k == n { t_end } else { k as f64 * h };
+            tracker.push(t, tilt(t));
+        }
+        tracker.finish();
+        tracker
+    }
+
+    #[test]
+    fn interpolants_reproduce_quartics_and_their_derivatives() {
+        let f = |t: f64| 1.0 - 2.0 * t + 0.5 * t * t - 0.25 * t.powi(3) + 0.125 * t.powi(4);
+        let df = |t: f64| -2.0 + t - 0.75 * t * t + 0.5 * t.powi(3);
+        let pts: Vec<(f64, f64)> = [0.1, 0.3, 0.35, 0.8, 1.0]
+            .iter()
+            .map(|&t| (t, f(t)))
+            .collect();
+        let p = Interpolant::new(&pts);
+        for t in [0.0, 0.2, 0.5, 0.9, 1.3] {
+            let (v, dv) = p.eval(t);
+            assert!((v - f(t)).abs() < 1e-14, "{t}: {v} vs {}", f(t));
+            assert!((dv / p.scale - df(t)).abs() < 1e-12, "{t}: {dv}");
+        }
+    }
+
+    #[test]
+    fn the_maximum_between_samples_is_found_to_the_fifth_order() {
+        // s = sin τ with τ(t) = 0.4 sin(3t) + 0.1: maximum τ = 0.5 at 3t = π/2.
+        let tilt = |t: f64| 0.4 * (3.0 * t).sin() + 0.1;
+        let coarse = track(0.01, 2.0, None, tilt).max_tilt();
+        let fine = track(0.005, 2.0, None, tilt).max_tilt();
+        assert!((coarse - 0.5).abs() < 1e-9, "{coarse}");
+        assert!((fine - 0.5).abs() < 1e-10, "{fine}");
+        // The largest sample alone is off by about ½ τ'' δt².
+        let samples = (0..=200)
+            .map(|k| tilt(k as f64 * 0.01))
+            .fold(f64::NEG_INFINITY, f64::max);
+        assert!(0.5 - samples > 1e-6, "{samples}");
+    }
+
+    #[test]
+    fn maxima_at_the_ends_are_the_end_samples() {
+        let rising = track(0.01, 1.0, None, |t| 0.3 * t);
+        assert!((rising.max_tilt() - 0.3).abs() < 1e-15);
+        assert!((rising.last_tilt - 0.3).abs() < 1e-15);
+        let falling = track(0.01, 1.0, None, |t| 0.3 * (1.0 - t));
+        assert!((falling.max_tilt() - 0.3).abs() < 1e-15);
+    }
+
+    #[test]
+    fn the_first_crossing_time_is_interpolated() {
+        // τ = 0.6 t²: crosses 0.15 at t = 0.5 and keeps rising.
+        let coarse = track(0.03, 1.0, Some(0.15), |t| 0.6 * t * t)
+            .crossing
+            .unwrap();
+        let fine = track(0.015, 1.0, Some(0.15), |t| 0.6 * t * t)
+            .crossing
+            .unwrap();
+        assert!((coarse - 0.5).abs() < 1e-8, "{coarse}");
+        // Fourth order at least: halving the step divides the error by 16 or more.
+        assert!((fine - 0.5).abs() < (coarse - 0.5).abs() / 16.0, "{fine}");
+        // Above the threshold from the start: time 0; never: none.
+        assert_eq!(track(0.03, 1.0, Some(0.1), |_| 0.2).crossing, Some(0.0));
+        assert_eq!(track(0.03, 1.0, Some(0.3), |_| 0.2).crossing, None);
+        // Crossing in the last interval, resolved at the end.
+        let t = track(0.1, 1.0, Some(0.5), |t| 0.55 * t).crossing.unwrap();
+        assert!((t - 0.5 / 0.55).abs() < 1e-7, "{t}");
+        // Only the first of several crossings counts.
+        let t = track(0.01, 4.0, Some(0.2), |t| 0.3 * (2.0 * t).sin().abs())
+            .crossing
+            .unwrap();
+        let exact = (0.2f64 / 0.3).asin() / 2.0;
+        assert!((t - exact).abs() < 1e-8, "{t} vs {exact}");
+    }
+
+    #[test]
+    fn repeated_samples_are_ignored() {
+        let mut tracker = TiltTracker::new(None);
+        for (t, tau) in [(0.0, 0.1), (0.1, 0.2), (0.2, 0.15), (0.2, 0.15), (0.3, 0.1)] {
+            tracker.push(t, tau);
+        }
+        tracker.finish();
+        assert!(tracker.max_tilt() >= 0.2 && tracker.max_tilt().is_finite());
+    }
+
+    #[test]
+    fn metric_names_round_trip() {
+        for m in Metric::ALL {
+            assert_eq!(Metric::from_name(m.name()), Some(m));
+        }
+        assert_eq!(Metric::from_name("tilt"), None);
+    }
+}
