@@ -29,6 +29,8 @@ enum Command {
     Scenes(cmd::scenes::Args),
     /// Run a scene (built-in or TOML file) and write its trajectory as CSV, optionally a plot
     Simulate(cmd::simulate::Args),
+    /// Run a parameter sweep in parallel (a TOML sweep file, or the built-in hoop-tilt map)
+    Sweep(cmd::sweep::Args),
 }
 
 fn main() -> ExitCode {
@@ -39,12 +41,17 @@ fn main() -> ExitCode {
         Command::Kinematics(args) => cmd::kinematics::run(&args),
         Command::Scenes(args) => cmd::scenes::run(&args),
         Command::Simulate(args) => cmd::simulate::run(&args),
+        Command::Sweep(args) => cmd::sweep::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("error: {e:#}");
-            ExitCode::FAILURE
+            if e.is::<cmd::sweep::PointsFailed>() {
+                ExitCode::from(cmd::sweep::PointsFailed::EXIT_CODE)
+            } else {
+                ExitCode::FAILURE
+            }
         }
     }
 }

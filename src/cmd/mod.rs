@@ -6,3 +6,4 @@ pub mod integrators;
 pub mod kinematics;
 pub mod scenes;
 pub mod simulate;
+pub mod sweep;

@@ -43,13 +43,6 @@ const VIRIDIS: [(u8, u8, u8); 11] = [
 
 /// Viridis at `x ∈ [0, 1]` (clamped; NaN gives the low end), dark purple to yellow.
 #[must_use]
-#[cfg_attr(
-    not(test),
-    expect(
-        dead_code,
-        reason = "for the sweep's heatmap and colour bar (next issue)"
-    )
-)]
 pub fn viridis(x: f64) -> RGBColor {
     let x = if x.is_nan() { 0.0 } else { x.clamp(0.0, 1.0) };
     let pos = x * (VIRIDIS.len() - 1) as f64;

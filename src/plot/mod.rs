@@ -15,9 +15,13 @@
 //! * **Reusable parts.** [`xy`] has stacked panels of line or point series on linear or
 //!   logarithmic axes (trajectories against time; log-log work–precision plots), [`colour`] a
 //!   colour-blind-safe palette for series and the viridis map for heatmaps with a colour bar,
-//!   [`trajectory`] the `simulate --plot` figure built from those.
+//!   [`trajectory`] the `simulate --plot` figure built from those, [`heatmap`] a value on a
+//!   grid of two parameters with a colour bar (the sweep's map) and [`slices`] its rows as
+//!   line series.
 
 pub mod colour;
+pub mod heatmap;
+pub mod slices;
 pub mod text;
 pub mod trajectory;
 pub mod xy;

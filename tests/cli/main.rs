@@ -3,3 +3,4 @@
 mod inertia;
 mod scenes;
 mod simulate;
+mod sweep;

@@ -1,0 +1,665 @@
+//! `tumble sweep`: run a parameter sweep (a TOML sweep file, or the built-in hoop-tilt map)
+//! in parallel into an output folder; `tumble sweep merge` joins the folders of a sharded
+//! sweep.
+//!
+//! Two stages, as everywhere in the CLI: the file and the `--set` overrides become a validated
+//! [`SweepDefinition`] (every error names the key and its line, or the override) and the
+//! flags are checked before any point runs; then the library runs the points, appending each
+//! row to the folder's journal as it finishes, while a progress bar (only when stderr is a
+//! terminal) shows the count and an ETA.
+//!
+//! Output folder: `sweep.toml` (the resolved definition) and `journal.csv` (the resumable
+//! state) from the start; at the end `results.csv` (one row per point in index order),
+//! the map (`tilt-map.png`/`.svg` for a tilt metric, `<metric>-map.*` otherwise; a grid of
+//! two axes) and its slices (`tilt-slices.png`/`.svg`: the metric against the first axis for
+//! a few values of the second; one-axis grids get this plot alone), then `manifest.json`.
+//! Each is written beside its destination and renamed when complete. A shard writes its own
+//! `results.csv` and manifest but no plots (its map has holes); `merge` writes them all.
+//!
+//! Exit status: 0 when every point is ok; 3 when the sweep finished but some points failed
+//! (their rows say why); 1 for any error (nothing to run, a folder that holds another
+//! sweep, an unwritable output).
+
+use std::fmt;
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
+use std::time::Duration;
+
+use anyhow::{Context, Result, bail};
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use serde_json::{Value, json};
+use tumble_scenarios::StepControl;
+use tumble_scenarios::sweep::{
+    self, AxisValues, Metric, Override, PointRow, Progress, RunConfig, Sampling, Shard, Status,
+    SweepDefinition, SweepReport,
+};
+
+use super::args::parse_angle;
+use crate::output;
+use crate::plot;
+
+/// Flags of `tumble sweep`.
+#[derive(clap::Args, Debug)]
+#[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
+pub struct Args {
+    /// `merge DIR...`: join the folders of a sharded sweep.
+    #[command(subcommand)]
+    pub command: Option<Command>,
+    /// A sweep file (TOML); without one, the built-in hoop-tilt map on `free-hoop`.
+    #[arg(value_name = "SWEEP.toml")]
+    pub file: Option<PathBuf>,
+    /// Override a key of the sweep: a scene parameter (`g=0`, `theta0=pi/3`), `run.dt`,
+    /// `run.tol`, `run.t_end`, `metrics.tilt_threshold`, `random.samples`, `random.seed`,
+    /// `axes.NAME.count`, `axes.NAME.start`, `axes.NAME.end`. Repeat for several.
+    #[arg(
+        long = "set",
+        value_name = "KEY=VALUE",
+        allow_hyphen_values = true,
+        action = clap::ArgAction::Append
+    )]
+    pub set: Vec<String>,
+    /// Output folder [default: out/tilt-map, or out/NAME for a file NAME.sweep.toml].
+    #[arg(short = 'o', long = "output", value_name = "DIR")]
+    pub output: Option<PathBuf>,
+    /// Worker threads [default: the number of cores].
+    #[arg(long, value_name = "N")]
+    pub threads: Option<usize>,
+    /// Continue the sweep in the output folder, skipping finished points (starts it when the
+    /// folder holds none).
+    #[arg(long)]
+    pub resume: bool,
+    /// Run only the K-th of N deterministic parts (points with index mod N = K − 1), for
+    /// job arrays; join the parts with `tumble sweep merge`.
+    #[arg(long, value_name = "K/N")]
+    pub shard: Option<String>,
+}
+
+/// Subcommands of `tumble sweep`.
+#[derive(clap::Subcommand, Debug)]
+pub enum Command {
+    /// Join the output folders of the N shards of a sweep into the folder an unsharded run
+    /// writes
+    Merge(MergeArgs),
+}
+
+/// Flags of `tumble sweep merge`.
+#[derive(clap::Args, Debug)]
+pub struct MergeArgs {
+    /// The shard folders (each written by `tumble sweep --shard K/N`).
+    #[arg(value_name = "DIR", required = true)]
+    pub dirs: Vec<PathBuf>,
+    /// Output folder [default: out/merged].
+    #[arg(short = 'o', long = "output", value_name = "DIR")]
+    pub output: Option<PathBuf>,
+}
+
+/// The sweep finished but some points failed: exit status 3.
+#[derive(Debug)]
+pub struct PointsFailed {
+    /// Failed points.
+    pub failed: usize,
+    /// All points.
+    pub total: u64,
+    /// Where the results are.
+    pub results: PathBuf,
+}
+
+impl fmt::Display for PointsFailed {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "{} of {} points failed (status and reason in {})",
+            self.failed,
+            self.total,
+            self.results.display()
+        )
+    }
+}
+
+impl std::error::Error for PointsFailed {}
+
+impl PointsFailed {
+    /// The exit status that says some points failed.
+    pub const EXIT_CODE: u8 = 3;
+}
+
+/// Parses one `--set KEY=VALUE`.
+fn parse_override(raw: &str) -> Result<Override> {
+    let Some((key, value)) = raw.split_once('=') else {
+        bail!("--set {raw}: expected KEY=VALUE, e.g. --set run.dt=0.005 or --set theta0=pi/3");
+    };
+    let key = key.trim();
+    if key.is_empty() {
+        bail!("--set {raw}: the key is empty");
+    }
+    let Some(x) = parse_angle(value) else {
+        bail!(
+            "--set {raw}: `{}` is not a number (numbers and angle expressions such as 2.5, \
+             1e-3, pi/2 are accepted)",
+            value.trim()
+        );
+    };
+    Ok(Override {
+        key: key.to_string(),
+        value: x,
+        text: raw.to_string(),
+    })
+}
+
+/// The default output folder of a sweep.
+fn default_output(file: Option<&Path>) -> PathBuf {
+    let name = file
+        .and_then(|f| f.file_name())
+        .map(|n| n.to_string_lossy().into_owned())
+        .map(|n| {
+            n.trim_end_matches(".toml")
+                .trim_end_matches(".sweep")
+                .to_string()
+        })
+        .filter(|n| !n.is_empty())
+        .unwrap_or_else(|| "tilt-map".to_string());
+    Path::new("out").join(name)
+}
+
+/// Runs the subcommand.
+///
+/// # Errors
+/// An invalid file, override or flag (before any point runs), a folder that holds another
+/// sweep, an unwritable output; [`PointsFailed`] when the sweep finished with failed points.
+pub fn run(args: &Args) -> Result<()> {
+    if let Some(Command::Merge(m)) = &args.command {
+        return merge(m);
+    }
+    // Stage one: everything validated.
+    let overrides = args
+        .set
+        .iter()
+        .map(|s| parse_override(s))
+        .collect::<Result<Vec<_>>>()?;
+    let def = match &args.file {
+        Some(path) => SweepDefinition::load(path, &overrides)?,
+        None => SweepDefinition::tilt_map(&overrides)?,
+    };
+    let threads = match args.threads {
+        Some(0) => bail!("--threads 0: at least one worker thread is needed"),
+        Some(n) => n,
+        None => std::thread::available_parallelism().map_or(1, usize::from),
+    };
+    let shard = match &args.shard {
+        Some(spec) => Shard::parse(spec)?,
+        None => Shard::ALL,
+    };
+    let dir = args
+        .output
+        .clone()
+        .unwrap_or_else(|| default_output(args.file.as_deref()));
+
+    // Stage two: the points.
+    let bar = progress_bar();
+    let mut on_progress = |p: &Progress| update(&bar, p);
+    let config = RunConfig {
+        threads,
+        shard,
+        resume: args.resume,
+        cancel: None,
+    };
+    let report = quiet_point_panics(|| sweep::run(&def, &dir, &config, &mut on_progress))?;
+    bar.finish_and_clear();
+    finish(&def, &dir, &report, shard, "sweep")
+}
+
+/// Writes `results.csv`, the plots and `manifest.json`, prints the summary, and turns failed
+/// points into [`PointsFailed`].
+fn finish(
+    def: &SweepDefinition,
+    dir: &Path,
+    report: &SweepReport,
+    shard: Shard,
+    command: &str,
+) -> Result<()> {
+    if !report.complete() {
+        bail!(
+            "{}: the sweep stopped with {} of {} points finished; run it again with --resume",
+            dir.display(),
+            report.rows.len(),
+            report.total
+        );
+    }
+    let results = dir.join("results.csv");
+    write_atomically(&results, &sweep::results_csv(def, &report.rows)?)?;
+    let plots = if shard == Shard::ALL {
+        draw_plots(def, dir, &report.rows)?
+    } else {
+        Vec::new()
+    };
+    let manifest = manifest(def, report, shard, command, &plots);
+    let mut text = serde_json::to_string_pretty(&manifest)?;
+    text.push('\n');
+    write_atomically(&dir.join("manifest.json"), text.as_bytes())?;
+
+    let failed = report.failures().count();
+    let info = def.scene.info();
+    eprintln!(
+        "sweep        {} ({}), {} points{}",
+        info.name,
+        def.origin,
+        def.points(),
+        if shard == Shard::ALL {
+            String::new()
+        } else {
+            format!(", shard {shard}: {} of them", report.total)
+        }
+    );
+    eprintln!(
+        "integrator   {}, {}, t in [0, {}] s",
+        def.integrator,
+        step_words(def.step),
+        def.t_end
+    );
+    if command == "merge" {
+        eprintln!("merged       {} points", report.rows.len());
+    } else {
+        let rate = report
+            .points_per_second()
+            .map_or_else(String::new, |r| format!(", {r:.1} points/s"));
+        eprintln!(
+            "work         {} points computed, {} resumed, {} threads, {}{rate}",
+            report.computed,
+            report.resumed,
+            report.threads,
+            seconds(report.elapsed)
+        );
+    }
+    eprintln!(
+        "status       {} ok, {failed} failed",
+        report.rows.len() - failed
+    );
+    eprintln!("output       {}", dir.display());
+    for p in &plots {
+        eprintln!("plot         {}", dir.join(p).display());
+    }
+    if failed > 0 {
+        return Err(PointsFailed {
+            failed,
+            total: report.total,
+            results,
+        }
+        .into());
+    }
+    Ok(())
+}
+
+/// `tumble sweep merge`.
+fn merge(args: &MergeArgs) -> Result<()> {
+    let out = args
+        .output
+        .clone()
+        .unwrap_or_else(|| Path::new("out").join("merged"));
+    let (def, report) = sweep::merge(&args.dirs, &out)?;
+    finish(&def, &out, &report, Shard::ALL, "merge")
+}
+
+/// Writes `bytes` to `path` whole or not at all.
+fn write_atomically(path: &Path, bytes: &[u8]) -> Result<()> {
+    use std::io::Write;
+    let mut temp = output::temp_file_beside(path)?;
+    temp.write_all(bytes)
+        .and_then(|()| temp.flush())
+        .with_context(|| format!("cannot write {}", path.display()))?;
+    output::commit(temp.into_temp_path(), path)
+}
+
+fn seconds(d: Duration) -> String {
+    let s = d.as_secs_f64();
+    if s < 1.0 {
+        format!("{:.1} ms", 1e3 * s)
+    } else {
+        format!("{s:.3} s")
+    }
+}
+
+fn step_words(step: StepControl) -> String {
+    match step {
+        StepControl::Fixed(h) => format!("fixed step dt = {h} s"),
+        StepControl::Tolerance(tol) => format!("tolerance {tol:e}"),
+    }
+}
+
+/// A progress bar with an ETA on stderr when it is a terminal; hidden otherwise.
+fn progress_bar() -> ProgressBar {
+    if !std::io::stderr().is_terminal() {
+        return ProgressBar::hidden();
+    }
+    let bar = ProgressBar::with_draw_target(Some(0), ProgressDrawTarget::stderr());
+    if let Ok(style) = ProgressStyle::with_template(
+        "{bar:40} {pos}/{len} points, {msg}{elapsed_precise} elapsed, ETA {eta_precise}",
+    ) {
+        bar.set_style(style);
+    }
+    bar
+}
+
+fn update(bar: &ProgressBar, p: &Progress) {
+    if bar.is_hidden() {
+        return;
+    }
+    if bar.length() != Some(p.total) {
+        bar.set_length(p.total);
+        // The ETA counts only this run's points.
+        bar.set_position(p.finished);
+        bar.reset_eta();
+    }
+    bar.set_position(p.finished);
+    if p.failed > 0 {
+        bar.set_message(format!("{} failed, ", p.failed));
+    }
+}
+
+/// Runs `f` with panics of the sweep's worker threads kept off stderr (the library records
+/// each in its point's row); other threads' panics are reported as usual.
+fn quiet_point_panics<T>(f: impl FnOnce() -> T) -> T {
+    let previous = std::sync::Arc::new(std::panic::take_hook());
+    let hook = std::sync::Arc::clone(&previous);
+    std::panic::set_hook(Box::new(move |info| {
+        let worker = std::thread::current()
+            .name()
+            .is_some_and(|n| n.starts_with("tumble-sweep-"));
+        if !worker {
+            hook(info);
+        }
+    }));
+    let out = f();
+    let _ = std::panic::take_hook();
+    if let Ok(previous) = std::sync::Arc::try_unwrap(previous) {
+        std::panic::set_hook(previous);
+    }
+    out
+}
+
+/// The label of an axis: `omega0 (rad/s)`.
+fn axis_label(name: &str, unit: &str) -> String {
+    if unit.is_empty() {
+        name.to_string()
+    } else {
+        format!("{name} ({unit})")
+    }
+}
+
+fn metric_label(m: Metric) -> String {
+    if m.unit().is_empty() {
+        m.description().to_string()
+    } else {
+        format!("{} ({})", m.description(), m.unit())
+    }
+}
+
+/// The plot files' stem for metric `m`: `tilt` for the tilt metrics, else the metric's name.
+fn plot_stem(m: Metric) -> &'static str {
+    if m.needs_tilt() { "tilt" } else { m.name() }
+}
+
+/// The fixed parameters, for subtitles.
+fn fixed_parameters(def: &SweepDefinition) -> String {
+    def.params
+        .iter()
+        .filter(|(n, _)| !def.axes.iter().any(|a| a.parameter == *n))
+        .map(|(n, v)| format!("{n} = {}", round_for_label(v)))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// A value with at most six significant digits, for labels.
+fn round_for_label(v: f64) -> String {
+    let s = format!("{v:.6}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    if s.len() > 10 {
+        format!("{v:.4e}")
+    } else {
+        s.to_string()
+    }
+}
+
+/// Draws the map and slices of a complete grid sweep; returns the file names written.
+fn draw_plots(def: &SweepDefinition, dir: &Path, rows: &[PointRow]) -> Result<Vec<String>> {
+    let Some(&metric) = def.metrics.first() else {
+        return Ok(Vec::new());
+    };
+    if def.sampling != Sampling::Grid || def.axes.len() > 2 {
+        return Ok(Vec::new());
+    }
+    let info = def.scene.info();
+    let stem = plot_stem(metric);
+    let value = |row: &PointRow| (row.status == Status::Ok).then(|| row.metrics[0]).flatten();
+    let x_axis = &def.axes[0];
+    let xs = x_axis.grid_values();
+    let increasing = |v: &[f64]| v.windows(2).all(|w| w[0] < w[1]);
+    let horizon = format!("over t in [0, {}] s", def.t_end);
+    let subtitle = format!(
+        "{}, {}, {}; {}",
+        info.name,
+        def.integrator,
+        step_words(def.step),
+        fixed_parameters(def)
+    );
+    let mut written = Vec::new();
+    let x_label = axis_label(x_axis.parameter, x_axis.unit);
+    if def.axes.len() == 1 {
+        let slice = plot::slices::Slice {
+            label: metric.name().to_string(),
+            points: xs.iter().copied().zip(rows.iter().map(value)).collect(),
+        };
+        let fig = plot::slices::figure(
+            format!("{} {horizon}", metric.description()),
+            subtitle,
+            &x_label,
+            &metric_label(metric),
+            &[slice],
+        );
+        for ext in ["png", "svg"] {
+            let name = format!("{stem}-slices.{ext}");
+            plot::save(&fig, &dir.join(&name))?;
+            written.push(name);
+        }
+        return Ok(written);
+    }
+    let y_axis = &def.axes[1];
+    let ys = y_axis.grid_values();
+    let (nx, ny) = (xs.len(), ys.len());
+    // values[j][i] at (xs[i], ys[j]); points are numbered with the last (y) axis fastest.
+    let mut grid = vec![vec![None; nx]; ny];
+    for row in rows {
+        let (i, j) = ((row.index as usize) / ny, (row.index as usize) % ny);
+        grid[j][i] = value(row);
+    }
+    if increasing(&xs) && increasing(&ys) {
+        let markers = critical_spin(def)
+            .map(|w| plot::heatmap::Marker {
+                x: w,
+                label: " sqrt(g/a)".to_string(),
+            })
+            .into_iter()
+            .collect();
+        let map = plot::heatmap::Heatmap {
+            title: format!("{} {horizon}", metric.description()),
+            subtitle: subtitle.clone(),
+            x_label: x_label.clone(),
+            y_label: axis_label(y_axis.parameter, y_axis.unit),
+            value_label: metric_label(metric),
+            xs: xs.clone(),
+            ys: ys.clone(),
+            values: grid.clone(),
+            range: None,
+            markers,
+            size: (1000, 720),
+        };
+        for ext in ["png", "svg"] {
+            let name = format!("{stem}-map.{ext}");
+            plot::save(&map, &dir.join(&name))?;
+            written.push(name);
+        }
+    }
+    let slices: Vec<plot::slices::Slice> = plot::slices::pick_rows(ny, 5)
+        .into_iter()
+        .map(|j| plot::slices::Slice {
+            label: format!(
+                "{} = {}{}",
+                y_axis.parameter,
+                round_for_label(ys[j]),
+                if y_axis.unit.is_empty() {
+                    String::new()
+                } else {
+                    format!(" {}", y_axis.unit)
+                }
+            ),
+            points: xs.iter().copied().zip(grid[j].iter().copied()).collect(),
+        })
+        .collect();
+    let fig = plot::slices::figure(
+        format!("{} {horizon}, slices", metric.description()),
+        subtitle,
+        &x_label,
+        &metric_label(metric),
+        &slices,
+    );
+    for ext in ["png", "svg"] {
+        let name = format!("{stem}-slices.{ext}");
+        plot::save(&fig, &dir.join(&name))?;
+        written.push(name);
+    }
+    Ok(written)
+}
+
+/// `√(g/a)` when the map's x axis is a hoop's spin `omega0` with `g` and `a` fixed.
+fn critical_spin(def: &SweepDefinition) -> Option<f64> {
+    let fixed = |n: &str| {
+        (!def.axes.iter().any(|a| a.parameter == n))
+            .then(|| def.params.get(n).ok())
+            .flatten()
+    };
+    (def.axes[0].parameter == "omega0")
+        .then(|| Some((fixed("g")? / fixed("a")?).sqrt()))
+        .flatten()
+        .filter(|w| w.is_finite() && *w > 0.0)
+}
+
+/// The definition as JSON.
+fn definition_json(def: &SweepDefinition) -> Value {
+    let parameters: serde_json::Map<String, Value> = def
+        .params
+        .iter()
+        .filter(|(n, _)| !def.axes.iter().any(|a| a.parameter == *n))
+        .map(|(n, v)| (n.to_string(), json!(v)))
+        .collect();
+    let axes: Vec<Value> = def
+        .axes
+        .iter()
+        .map(|a| match &a.values {
+            AxisValues::List(v) => json!({"parameter": a.parameter, "unit": a.unit, "values": v}),
+            AxisValues::Range {
+                start,
+                end,
+                count,
+                spacing,
+            } => json!({
+                "parameter": a.parameter,
+                "unit": a.unit,
+                "range": [start, end],
+                "count": count,
+                "spacing": format!("{spacing:?}").to_lowercase(),
+            }),
+        })
+        .collect();
+    let (dt, tol) = match def.step {
+        StepControl::Fixed(h) => (Some(h), None),
+        StepControl::Tolerance(t) => (None, Some(t)),
+    };
+    json!({
+        "origin": def.origin,
+        "scene": def.scene.info().name,
+        "parameters": parameters,
+        "run": {"integrator": def.integrator, "dt": dt, "tol": tol, "t_end": def.t_end},
+        "axes": axes,
+        "sampling": match def.sampling {
+            Sampling::Grid => json!({"kind": "grid"}),
+            Sampling::Random { samples, seed } => {
+                json!({"kind": "random", "samples": samples, "seed": seed, "generator": "splitmix64"})
+            }
+        },
+        "metrics": def.metrics.iter().map(|m| m.name()).collect::<Vec<_>>(),
+        "tilt_threshold": def.tilt_threshold,
+        "points": def.points(),
+    })
+}
+
+/// `manifest.json`.
+fn manifest(
+    def: &SweepDefinition,
+    report: &SweepReport,
+    shard: Shard,
+    command: &str,
+    plots: &[String],
+) -> Value {
+    let failures: Vec<Value> = report
+        .failures()
+        .map(|r| json!({"index": r.index, "status": r.status.name(), "reason": r.reason}))
+        .collect();
+    let (dt, tol) = match def.step {
+        StepControl::Fixed(h) => (Some(h), None),
+        StepControl::Tolerance(t) => (None, Some(t)),
+    };
+    let mut files = vec![
+        "sweep.toml".to_string(),
+        "journal.csv".to_string(),
+        "results.csv".to_string(),
+    ];
+    files.extend(plots.iter().cloned());
+    json!({
+        "tumble_version": env!("CARGO_PKG_VERSION"),
+        "command": command,
+        "definition": definition_json(def),
+        "definition_toml": def.to_toml(),
+        "integrator": def.integrator,
+        "dt": dt,
+        "tol": tol,
+        "t_end": def.t_end,
+        "shard": shard.to_string(),
+        "points": report.total,
+        "ok": report.rows.len() - failures.len(),
+        "failed": failures.len(),
+        "failures": failures,
+        "threads": report.threads,
+        "computed_points": report.computed,
+        "resumed_points": report.resumed,
+        "wall_time_s": report.elapsed.as_secs_f64(),
+        "points_per_second": report.points_per_second(),
+        "files": files,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn overrides_parse_angles_and_reject_junk() {
+        let o = parse_override("theta0=pi/3").unwrap();
+        assert_eq!(o.key, "theta0");
+        assert!((o.value - std::f64::consts::PI / 3.0).abs() < 1e-15);
+        assert!(parse_override("run.dt").is_err());
+        assert!(parse_override("=1").is_err());
+        assert!(parse_override("g=heavy").is_err());
+    }
+
+    #[test]
+    fn default_folders_are_named_after_the_file() {
+        assert_eq!(default_output(None), Path::new("out/tilt-map"));
+        assert_eq!(
+            default_output(Some(Path::new("scenes/flips.sweep.toml"))),
+            Path::new("out/flips")
+        );
+        assert_eq!(
+            default_output(Some(Path::new("a/b.toml"))),
+            Path::new("out/b")
+        );
+    }
+}

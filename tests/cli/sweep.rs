@@ -1,0 +1,406 @@
+//! `tumble sweep`: the same `results.csv` byte for byte whatever the threads, after a kill and
+//! `--resume`, and from merged shards; failing points marked and the exit status 3; bad sweep
+//! files refused before any work; the output folder's files.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output, Stdio};
+use std::time::{Duration, Instant};
+
+use tempfile::TempDir;
+use tumble_scenarios::sweep::SweepDefinition;
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+fn tumble_in(dir: &Path, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_tumble"))
+        .current_dir(dir)
+        .args(args)
+        .output()
+        .expect("cannot run the tumble binary")
+}
+
+fn stderr(out: &Output) -> String {
+    String::from_utf8_lossy(&out.stderr).into_owned()
+}
+
+fn succeeds(dir: &Path, args: &[&str]) -> Output {
+    let out = tumble_in(dir, args);
+    assert!(out.status.success(), "{args:?} failed: {}", stderr(&out));
+    out
+}
+
+fn read(path: &Path) -> String {
+    std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+}
+
+/// A small sweep of the free hoop: 4 spins × 2 bead angles over `t_end`.
+fn small(t_end: f64, spins: usize) -> String {
+    format!(
+        r#"# A small test sweep.
+scene = "free-hoop"
+
+[parameters]
+g = 9.81
+a = 1.0
+
+[run]
+integrator = "gauss8"
+dt = 0.01
+t_end = {t_end:?}
+
+[[axes]]
+parameter = "omega0"
+range = [1.0, 6.0]
+count = {spins}
+
+[[axes]]
+parameter = "alpha0"
+values = [0.5, 2.0]
+
+[metrics]
+record = ["max_tilt", "final_tilt", "time_tilt_exceeds", "max_energy_rel_err"]
+tilt_threshold = 0.05
+"#
+    )
+}
+
+fn write_sweep(dir: &Path, name: &str, text: &str) -> PathBuf {
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+fn manifest(dir: &Path) -> serde_json::Value {
+    serde_json::from_str(&read(&dir.join("manifest.json"))).expect("manifest.json is JSON")
+}
+
+#[test]
+fn one_and_two_threads_write_the_same_results_and_a_complete_folder() {
+    let tmp = TempDir::new().unwrap();
+    let file = write_sweep(tmp.path(), "small.sweep.toml", &small(0.5, 4));
+    let file = file.to_str().unwrap();
+    succeeds(tmp.path(), &["sweep", file, "--threads", "1", "-o", "one"]);
+    let out = succeeds(tmp.path(), &["sweep", file, "--threads", "2", "-o", "two"]);
+    let one = read(&tmp.path().join("one/results.csv"));
+    let two = read(&tmp.path().join("two/results.csv"));
+    assert_eq!(one, two);
+    assert_eq!(one.lines().count(), 1 + 8);
+    assert!(one.starts_with(
+        "index,omega0,alpha0,max_tilt,final_tilt,time_tilt_exceeds,max_energy_rel_err,status,reason\n"
+    ));
+    assert!(one.lines().skip(1).all(|l| l.ends_with(",ok,")), "{one}");
+    // The folder: definition, journal, results, map and slices, manifest; nothing partial.
+    let dir = tmp.path().join("two");
+    let mut files: Vec<String> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    files.sort();
+    assert_eq!(
+        files,
+        [
+            "journal.csv",
+            "manifest.json",
+            "results.csv",
+            "sweep.toml",
+            "tilt-map.png",
+            "tilt-map.svg",
+            "tilt-slices.png",
+            "tilt-slices.svg"
+        ]
+    );
+    let svg = read(&dir.join("tilt-map.svg"));
+    for label in [
+        "omega0 (rad/s)",
+        "alpha0 (rad)",
+        "maximum tilt (rad)",
+        "sqrt(g/a)",
+    ] {
+        assert!(svg.contains(label), "map without `{label}`");
+    }
+    let m = manifest(&dir);
+    assert_eq!(m["threads"], 2);
+    assert_eq!(m["points"], 8);
+    assert_eq!(m["failed"], 0);
+    assert_eq!(m["integrator"], "gauss8");
+    assert_eq!(m["dt"], 0.01);
+    assert_eq!(m["definition"]["scene"], "free-hoop");
+    assert_eq!(m["definition"]["axes"][0]["parameter"], "omega0");
+    assert_eq!(m["tumble_version"], env!("CARGO_PKG_VERSION"));
+    assert!(m["wall_time_s"].as_f64().unwrap() > 0.0);
+    assert!(m["points_per_second"].as_f64().unwrap() > 0.0);
+    // The resolved definition runs the same sweep again.
+    let resolved = dir.join("sweep.toml");
+    succeeds(
+        tmp.path(),
+        &["sweep", resolved.to_str().unwrap(), "-o", "three"],
+    );
+    assert_eq!(read(&tmp.path().join("three/results.csv")), one);
+    // No progress bar when stderr is not a terminal: only the summary.
+    let err = stderr(&out);
+    assert!(err.contains("8 ok, 0 failed"), "{err}");
+    assert!(!err.contains("ETA"), "{err}");
+}
+
+#[test]
+fn a_killed_sweep_resumes_to_the_same_results() {
+    let tmp = TempDir::new().unwrap();
+    // 200 points of a few ms each on one thread: long enough to be killed midway.
+    let file = write_sweep(tmp.path(), "kill.sweep.toml", &small(1.0, 100));
+    let file = file.to_str().unwrap();
+    succeeds(
+        tmp.path(),
+        &["sweep", file, "--threads", "2", "-o", "reference"],
+    );
+    let reference = read(&tmp.path().join("reference/results.csv"));
+
+    let mut child = Command::new(env!("CARGO_BIN_EXE_tumble"))
+        .current_dir(tmp.path())
+        .args(["sweep", file, "--threads", "1", "-o", "killed"])
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    let journal = tmp.path().join("killed/journal.csv");
+    let start = Instant::now();
+    // Kill once the first chunk of rows is on disk (2 header lines, 16 rows).
+    loop {
+        let lines = std::fs::read_to_string(&journal).map_or(0, |t| t.lines().count());
+        if lines >= 2 + 16 {
+            break;
+        }
+        assert!(
+            start.elapsed() < Duration::from_secs(120),
+            "no journal rows after two minutes"
+        );
+        assert!(
+            child.try_wait().unwrap().is_none(),
+            "the sweep ended before it could be killed"
+        );
+        std::thread::sleep(Duration::from_millis(2));
+    }
+    child.kill().unwrap();
+    let status = child.wait().unwrap();
+    assert!(!status.success());
+    let killed = tmp.path().join("killed");
+    assert!(
+        !killed.join("results.csv").exists() && !killed.join("manifest.json").exists(),
+        "a killed sweep left results behind as if complete"
+    );
+    let done = read(&journal).lines().count() - 2;
+    assert!(done < 200, "all {done} points finished before the kill");
+
+    // Without --resume the folder is refused; with it, the rest is computed.
+    let out = tumble_in(tmp.path(), &["sweep", file, "-o", "killed"]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(stderr(&out).contains("pass --resume"), "{}", stderr(&out));
+    succeeds(
+        tmp.path(),
+        &["sweep", file, "--threads", "2", "-o", "killed", "--resume"],
+    );
+    assert_eq!(read(&killed.join("results.csv")), reference);
+    let m = manifest(&killed);
+    let resumed = m["resumed_points"].as_u64().unwrap();
+    assert!((16..200).contains(&resumed), "{resumed}");
+    assert_eq!(m["computed_points"].as_u64().unwrap(), 200 - resumed);
+}
+
+#[test]
+fn three_shards_merge_into_the_unsharded_results() {
+    let tmp = TempDir::new().unwrap();
+    let file = write_sweep(tmp.path(), "shards.sweep.toml", &small(0.5, 5));
+    let file = file.to_str().unwrap();
+    succeeds(tmp.path(), &["sweep", file, "-o", "whole"]);
+    for k in 1..=3 {
+        let shard = format!("{k}/3");
+        let dir = format!("part{k}");
+        succeeds(
+            tmp.path(),
+            &[
+                "sweep",
+                file,
+                "--shard",
+                &shard,
+                "-o",
+                &dir,
+                "--threads",
+                "1",
+            ],
+        );
+        // A shard's results hold its points only, and it draws no map.
+        let rows = read(&tmp.path().join(&dir).join("results.csv"))
+            .lines()
+            .count()
+            - 1;
+        assert_eq!(rows, [4, 3, 3][k - 1], "shard {shard}");
+        assert!(!tmp.path().join(&dir).join("tilt-map.png").exists());
+        assert_eq!(manifest(&tmp.path().join(&dir))["shard"], shard);
+    }
+    succeeds(
+        tmp.path(),
+        &["sweep", "merge", "part1", "part2", "part3", "-o", "merged"],
+    );
+    let merged = tmp.path().join("merged");
+    assert_eq!(
+        read(&merged.join("results.csv")),
+        read(&tmp.path().join("whole/results.csv"))
+    );
+    assert_eq!(
+        read(&merged.join("sweep.toml")),
+        read(&tmp.path().join("whole/sweep.toml"))
+    );
+    assert!(merged.join("tilt-map.png").exists());
+    assert_eq!(manifest(&merged)["command"], "merge");
+    // An incomplete set of shards is refused.
+    let out = tumble_in(
+        tmp.path(),
+        &["sweep", "merge", "part1", "part3", "-o", "m2"],
+    );
+    assert_eq!(out.status.code(), Some(1));
+    assert!(
+        stderr(&out).contains("missing shard 2/3"),
+        "{}",
+        stderr(&out)
+    );
+}
+
+#[test]
+fn failing_points_are_marked_and_the_exit_status_says_so() {
+    let tmp = TempDir::new().unwrap();
+    // At 10^4 rad/s, dt = 0.01 s is absurd: gauss8's stage iteration diverges there.
+    let text = small(0.5, 2).replace(
+        "range = [1.0, 6.0]\ncount = 2",
+        "values = [1.0, 1e4, 3.0, 2e4]",
+    );
+    let file = write_sweep(tmp.path(), "fail.sweep.toml", &text);
+    let out = tumble_in(tmp.path(), &["sweep", file.to_str().unwrap(), "-o", "f"]);
+    assert_eq!(out.status.code(), Some(3), "{}", stderr(&out));
+    let err = stderr(&out);
+    assert!(err.contains("4 of 8 points failed"), "{err}");
+    let results = read(&tmp.path().join("f/results.csv"));
+    let failed: Vec<&str> = results
+        .lines()
+        .skip(1)
+        .filter(|l| l.contains(",failed,"))
+        .map(|l| l.split(',').next().unwrap())
+        .collect();
+    assert_eq!(failed, ["2", "3", "6", "7"]);
+    for line in results.lines().skip(1) {
+        let ok = line.ends_with(",ok,");
+        assert!(
+            ok || line.contains("did not converge"),
+            "a failed row without its reason: {line}"
+        );
+    }
+    let m = manifest(&tmp.path().join("f"));
+    assert_eq!(m["failed"], 4);
+    assert_eq!(m["failures"][0]["index"], 2);
+    assert!(
+        m["failures"][0]["reason"]
+            .as_str()
+            .unwrap()
+            .contains("did not converge")
+    );
+}
+
+#[test]
+fn bad_sweep_files_and_flags_are_refused_before_any_work() {
+    let tmp = TempDir::new().unwrap();
+    let good = small(0.5, 2);
+    let cases: Vec<(String, &str)> = vec![
+        (good.replace("[run]", "[run]\nstep = 0.1"), "bad.toml:9:1"),
+        (
+            good.replace("t_end = 0.5", "t_end = 0.5\nevery = 3"),
+            "every",
+        ),
+        (good.replace("count = 2", "count = 0"), "axes.omega0.count"),
+        (good.replace("[1.0, 6.0]", "[6.0, 1.0]"), "increasing"),
+        (
+            good.replace("\"omega0\"", "\"omega\""),
+            "no parameter `omega`",
+        ),
+        (good.replace("a = 1.0", "a = -1.0"), "parameters.a"),
+        (
+            good.replace("\"max_tilt\"", "\"flips\""),
+            "torque-free bodies",
+        ),
+        (good.replace("tilt_threshold = 0.05", ""), "tilt_threshold"),
+        (good.replace("dt = 0.01", "dt = 1.0"), "run.dt"),
+        (
+            good.replace("values = [0.5, 2.0]", "values = [0.5, 2.0]\ncount = 3"),
+            "goes with a `range`",
+        ),
+    ];
+    for (text, needle) in &cases {
+        let file = write_sweep(tmp.path(), "bad.toml", text);
+        let out = tumble_in(
+            tmp.path(),
+            &["sweep", file.to_str().unwrap(), "-o", "never"],
+        );
+        assert_eq!(out.status.code(), Some(1), "{needle}: {}", stderr(&out));
+        let err = stderr(&out);
+        assert!(err.contains(needle), "{needle}: {err}");
+        assert!(err.contains("bad.toml:"), "no location: {err}");
+        assert!(
+            !tmp.path().join("never").exists(),
+            "{needle}: output created"
+        );
+    }
+    let file = write_sweep(tmp.path(), "ok.toml", &good);
+    let file = file.to_str().unwrap();
+    for (args, needle) in [
+        (vec!["--threads", "0"], "--threads 0"),
+        (vec!["--shard", "4/3"], "shard 4/3"),
+        (vec!["--shard", "two"], "K/N"),
+        (vec!["--set", "omega0=3"], "swept by the axis"),
+        (vec!["--set", "run.dt=x"], "not a number"),
+        (vec!["--set", "warp=9"], "no parameter `warp`"),
+    ] {
+        let mut all = vec!["sweep", file, "-o", "never"];
+        all.extend(args);
+        let out = tumble_in(tmp.path(), &all);
+        assert_eq!(out.status.code(), Some(1), "{all:?}");
+        assert!(stderr(&out).contains(needle), "{all:?}: {}", stderr(&out));
+        assert!(!tmp.path().join("never").exists());
+    }
+    let out = tumble_in(tmp.path(), &["sweep", "missing.sweep.toml"]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(stderr(&out).contains("cannot read the sweep file"));
+}
+
+#[test]
+fn the_built_in_map_runs_with_overrides_into_out_tilt_map() {
+    let tmp = TempDir::new().unwrap();
+    succeeds(
+        tmp.path(),
+        &[
+            "sweep",
+            "--set",
+            "axes.omega0.count=3",
+            "--set",
+            "axes.alpha0.count=2",
+            "--set",
+            "run.t_end=0.3",
+        ],
+    );
+    let dir = tmp.path().join("out/tilt-map");
+    let results = read(&dir.join("results.csv"));
+    assert_eq!(results.lines().count(), 1 + 6);
+    assert!(dir.join("tilt-map.png").exists() && dir.join("tilt-slices.svg").exists());
+    assert_eq!(manifest(&dir)["definition"]["origin"], "built-in tilt map");
+}
+
+#[test]
+fn the_example_sweep_files_are_valid() {
+    let mut found = 0;
+    for entry in std::fs::read_dir(root().join("scenes")).unwrap() {
+        let path = entry.unwrap().path();
+        if path.to_string_lossy().ends_with(".sweep.toml") {
+            SweepDefinition::load(&path, &[]).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+            found += 1;
+        }
+    }
+    assert!(found >= 2, "{found} example sweep files");
+}
