@@ -435,8 +435,7 @@ fn draw_plots(def: &SweepDefinition, dir: &Path, rows: &[PointRow]) -> Result<Ve
     let increasing = |v: &[f64]| v.windows(2).all(|w| w[0] < w[1]);
     let horizon = format!("over t in [0, {}] s", def.t_end);
     let subtitle = format!(
-        "{}, {}, {}; {}",
-        info.name,
+        "{}, {}; {}",
         def.integrator,
         step_words(def.step),
         fixed_parameters(def)
@@ -480,7 +479,7 @@ fn draw_plots(def: &SweepDefinition, dir: &Path, rows: &[PointRow]) -> Result<Ve
             .into_iter()
             .collect();
         let map = plot::heatmap::Heatmap {
-            title: format!("{} {horizon}", metric.description()),
+            title: format!("{}: {} {horizon}", info.name, metric.description()),
             subtitle: subtitle.clone(),
             x_label: x_label.clone(),
             y_label: axis_label(y_axis.parameter, y_axis.unit),
@@ -515,7 +514,12 @@ fn draw_plots(def: &SweepDefinition, dir: &Path, rows: &[PointRow]) -> Result<Ve
         })
         .collect();
     let fig = plot::slices::figure(
-        format!("{} {horizon}, slices", metric.description()),
+        format!(
+            "{}: {} {horizon}, against {}",
+            info.name,
+            metric.description(),
+            x_axis.parameter
+        ),
         subtitle,
         &x_label,
         &metric_label(metric),

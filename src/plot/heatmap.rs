@@ -170,7 +170,7 @@ impl Figure for Heatmap {
             ))?;
         }
         let (w, _) = body.dim_in_pixel();
-        let bar_width = px(130);
+        let bar_width = px(120);
         let (map_area, bar_area) = body.split_horizontally(w.saturating_sub(bar_width));
 
         // The map.
@@ -247,12 +247,12 @@ impl Figure for Heatmap {
 
         // The colour bar: a column of the map's colours with its own value axis.
         let mut bar = ChartBuilder::on(&bar_area)
-            .margin_left(px(8))
-            .margin_right(px(4))
+            .margin_left(px(4))
+            .margin_right(px(34))
             .margin_top(px(8))
             .margin_bottom(px(4) + px(48))
             .y_label_area_size(px(0))
-            .right_y_label_area_size(px(60))
+            .right_y_label_area_size(px(52))
             .build_cartesian_2d(0.0..1.0, lo..hi)?;
         let v_fmt = label_for(nice_step(hi - lo, 8));
         bar.configure_mesh()
@@ -268,7 +268,7 @@ impl Figure for Heatmap {
         bar.draw_series((0..steps).map(|k| {
             let (a, b) = (k as f64 / steps as f64, (k + 1) as f64 / steps as f64);
             Rectangle::new(
-                [(0.0, lo + a * (hi - lo)), (0.35, lo + b * (hi - lo))],
+                [(0.0, lo + a * (hi - lo)), (1.0, lo + b * (hi - lo))],
                 colour::viridis(0.5 * (a + b)).filled(),
             )
         }))?;
@@ -276,7 +276,7 @@ impl Figure for Heatmap {
         let (bw, bh) = bar_area.dim_in_pixel();
         bar_area.draw(&Text::new(
             self.value_label.clone(),
-            (bw as i32 - px(14) as i32, (bh / 2) as i32),
+            (bw as i32 - px(16) as i32, (bh / 2) as i32),
             font(17.0 * s)
                 .transform(FontTransform::Rotate270)
                 .color(&BLACK)

@@ -13,7 +13,9 @@
 //!
 //! * `max_tilt`: at every sample that is a local maximum of `s`, the maximum of the
 //!   interpolant over the two neighbouring intervals (the root of its derivative, found by
-//!   bisection); the result is the largest of these and of every sample, as `asin(min(s, 1))`.
+//!   bisection), and likewise inside the first and the last interval of the run, where a
+//!   maximum shows in no sample (the tilt peaking between the last step and `t_end`); the
+//!   result is the largest of these and of every sample, as `asin(min(s, 1))`.
 //! * `final_tilt`: the tilt of the last sample (`t = t_end` exactly).
 //! * `time_tilt_exceeds`: the first time `τ > τ_c` (the file's `tilt_threshold`), the root of
 //!   `p(t) = sin τ_c` in the interval where the samples first cross it; empty when never.
@@ -339,6 +341,26 @@ impl TiltTracker {
         if n >= 3 {
             self.refine_max(n - 3);
         }
+        // A maximum inside the first interval shows in no sample: look for it once five
+        // samples are there.
+        if self.count == 5 {
+            self.edge_max(0);
+        }
+    }
+
+    /// A maximum strictly inside the interval from window sample `k` to `k + 1` (the first or
+    /// the last interval of the run, where no sample beyond can reveal it), found where the
+    /// interpolant through the window turns from rising to falling.
+    fn edge_max(&mut self, k: usize) {
+        if k + 1 >= self.window.len() {
+            return;
+        }
+        let p = Interpolant::new(&self.window);
+        let (a, b) = (self.window[k].0, self.window[k + 1].0);
+        let best = p.max_on(a, a, b);
+        if best.is_finite() {
+            self.max_s = self.max_s.max(best);
+        }
     }
 
     /// Refines a local maximum of the samples at window position `c` (`0 < c < len − 1`).
@@ -375,6 +397,12 @@ impl TiltTracker {
         let n = self.window.len();
         if n >= 3 {
             self.refine_max(n - 2);
+        }
+        if n >= 2 {
+            if self.count < 5 {
+                self.edge_max(0);
+            }
+            self.edge_max(n - 2);
         }
         if let Some(k) = self.pending {
             self.resolve_crossing(k);
@@ -558,6 +586,22 @@ mod tests {
             .map(|k| tilt(k as f64 * 0.01))
             .fold(f64::NEG_INFINITY, f64::max);
         assert!(0.5 - samples > 1e-6, "{samples}");
+    }
+
+    #[test]
+    fn a_maximum_inside_the_first_or_last_interval_is_found() {
+        // Peak at t = 0.996, inside the last interval [0.99, 1] of a step of 0.01: no sample
+        // is a local maximum there.
+        let peak = |t0: f64| move |t: f64| 0.5 - 3.0 * (t - t0) * (t - t0);
+        let end = track(0.01, 1.0, None, peak(0.996));
+        assert!((end.max_tilt() - 0.5).abs() < 1e-9, "{}", end.max_tilt());
+        assert!(end.last_tilt < 0.5 - 1e-6);
+        let start = track(0.01, 1.0, None, peak(0.004));
+        assert!(
+            (start.max_tilt() - 0.5).abs() < 1e-9,
+            "{}",
+            start.max_tilt()
+        );
     }
 
     #[test]

@@ -647,3 +647,77 @@ fn shards_partition_the_points() {
         assert!(Shard::parse(bad).is_err(), "{bad}");
     }
 }
+
+// ---------------------------------------------------------------------------------------
+// The built-in map is converged in the step.
+
+/// The largest change of `max_tilt` and `final_tilt` (rad) at `indices` of the built-in map
+/// when its step is halved, and the index where it happens.
+fn tilt_map_step_halving(indices: &[u64]) -> (f64, u64) {
+    use rayon::prelude::*;
+    let def = SweepDefinition::tilt_map(&[]).unwrap();
+    let StepControl::Fixed(h) = def.step else {
+        panic!("the map has a fixed step")
+    };
+    let half = SweepDefinition::tilt_map(&[set("run.dt", h / 2.0)]).unwrap();
+    let tilts = [Metric::MaxTilt, Metric::FinalTilt].map(|m| {
+        def.metrics
+            .iter()
+            .position(|&x| x == m)
+            .expect("the map records max_tilt and final_tilt")
+    });
+    indices
+        .par_iter()
+        .map(|&i| {
+            let (a, b) = (run_point(&def, i), run_point(&half, i));
+            assert_eq!(a.status, Status::Ok, "point {i}: {}", a.reason);
+            assert_eq!(b.status, Status::Ok, "point {i} at dt/2: {}", b.reason);
+            let worst = tilts
+                .iter()
+                .map(|&k| (a.metrics[k].unwrap() - b.metrics[k].unwrap()).abs())
+                .fold(0.0, f64::max);
+            (worst, i)
+        })
+        .reduce(|| (0.0, 0), |x, y| if y.0 > x.0 { y } else { x })
+}
+
+#[test]
+fn tilt_map_values_change_by_less_than_1e_6_rad_when_the_step_is_halved() {
+    let def = SweepDefinition::tilt_map(&[]).unwrap();
+    let n = def.axes[1].count().unwrap();
+    // (spin, bead angle) grid indices: slow and fast spins, around the critical spin, the bead
+    // near the bottom, at the side and near the top; (61, 31) is where the full-grid check
+    // finds the largest change (6.6e-8 rad), (24, 40) a point whose tilt peaks inside the
+    // last step (3.2e-5 rad before maxima inside the first and last intervals were sought).
+    let picks = [
+        (5, 9),
+        (24, 40),
+        (26, 20),
+        (27, 5),
+        (40, 40),
+        (61, 31),
+        (75, 61),
+        (0, 61),
+        (61, 61),
+    ];
+    let indices: Vec<u64> = picks.iter().map(|&(i, j)| i * n + j).collect();
+    let (worst, at) = tilt_map_step_halving(&indices);
+    assert!(worst < 1e-6, "point {at}: tilt changes by {worst:e} rad");
+}
+
+/// Every point of the built-in map (about two minutes in release on 2 cores):
+/// `cargo test --release -p tumble-scenarios -- --ignored tilt_map_is_converged --nocapture`.
+#[test]
+#[ignore = "runs the whole built-in map twice; use --release"]
+fn tilt_map_is_converged() {
+    let def = SweepDefinition::tilt_map(&[]).unwrap();
+    let indices: Vec<u64> = (0..def.points()).collect();
+    let (worst, at) = tilt_map_step_halving(&indices);
+    eprintln!(
+        "built-in tilt map, {} points: largest change of max_tilt or final_tilt when dt is \
+         halved: {worst:e} rad at point {at} {:?}",
+        def.points(),
+        def.point(at)
+    );
+    assert!(worst < 1e-6, "point {at}: tilt changes by {worst:e} rad");
+}
