@@ -45,7 +45,8 @@ fn bench(c: &mut Criterion) {
     let def = SweepDefinition::parse(SWEEP, "bench", &[]).expect("the benchmark's sweep is valid");
     let points = def.points();
     let mut group = c.benchmark_group("sweep");
-    group.sample_size(10);
+    group.sample_size(20);
+    group.measurement_time(std::time::Duration::from_secs(15));
     group.throughput(Throughput::Elements(points));
     for threads in [1usize, 2] {
         group.bench_function(format!("threads-{threads}"), |b| {

@@ -474,7 +474,7 @@ fn draw_plots(def: &SweepDefinition, dir: &Path, rows: &[PointRow]) -> Result<Ve
         let markers = critical_spin(def)
             .map(|w| plot::heatmap::Marker {
                 x: w,
-                label: " sqrt(g/a)".to_string(),
+                label: " √(g/a)".to_string(),
             })
             .into_iter()
             .collect();
@@ -489,6 +489,7 @@ fn draw_plots(def: &SweepDefinition, dir: &Path, rows: &[PointRow]) -> Result<Ve
             values: grid.clone(),
             range: None,
             markers,
+            curves: relative_equilibrium(def).into_iter().collect(),
             size: (1000, 720),
         };
         for ext in ["png", "svg"] {
@@ -544,6 +545,27 @@ fn critical_spin(def: &SweepDefinition) -> Option<f64> {
         .then(|| Some((fixed("g")? / fixed("a")?).sqrt()))
         .flatten()
         .filter(|w| w.is_finite() && *w > 0.0)
+}
+
+/// For a hoop map of `omega0` against `alpha0` with `g` and `a` fixed: the bead's relative
+/// equilibrium on a hoop spun at `ω`, `cos α* = g/(a ω²)` (`ω > √(g/a)`, DESIGN §5). A bead
+/// released there (at rest on the hoop) is in equilibrium relative to the spinning hoop, so
+/// nothing tips the hoop: the map's valley of small tilt follows this curve.
+fn relative_equilibrium(def: &SweepDefinition) -> Option<plot::heatmap::Curve> {
+    let critical = critical_spin(def)?;
+    let y = def.axes.get(1)?;
+    if y.parameter != "alpha0" || def.scene.info().name != "free-hoop" {
+        return None;
+    }
+    let end = *def.axes[0].grid_values().last()?;
+    let points = (0..=400)
+        .map(|k| critical + (end - critical) * f64::from(k) / 400.0)
+        .map(|w| (w, (critical * critical / (w * w)).acos()))
+        .collect();
+    Some(plot::heatmap::Curve {
+        label: "cos α* = g/(a ω₀²)".to_string(),
+        points,
+    })
 }
 
 /// The definition as JSON.

@@ -5,8 +5,8 @@
 //! as far again outward), so a grid point sits at the centre of its cell. Cells without a
 //! value (a failed point) are grey, and the figure says so. The colour bar on the right maps
 //! the colour range, `[min, max]` of the finite values unless given, with ticks labelled as
-//! on the value axis of any panel. Optional vertical marker lines (a critical value) are drawn
-//! dashed with a label.
+//! on the value axis of any panel. Optional vertical marker lines (a critical value) and
+//! curves (a theoretical boundary) are drawn dashed in white with a label.
 
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -24,6 +24,15 @@ pub struct Marker {
     pub x: f64,
     /// What it marks (`√(g/a)`).
     pub label: String,
+}
+
+/// A curve over the map (a theoretical boundary), drawn dashed with a label at its end.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Curve {
+    /// What it is.
+    pub label: String,
+    /// Its points, densely enough to look smooth.
+    pub points: Vec<(f64, f64)>,
 }
 
 /// A value on a grid of two parameters.
@@ -49,6 +58,8 @@ pub struct Heatmap {
     pub range: Option<(f64, f64)>,
     /// Vertical marker lines.
     pub markers: Vec<Marker>,
+    /// Curves drawn over the cells.
+    pub curves: Vec<Curve>,
     /// Width and height in pixels.
     pub size: (u32, u32),
 }
@@ -237,6 +248,30 @@ impl Figure for Heatmap {
                     .pos(Pos::new(HPos::Left, VPos::Top)),
             )))?;
         }
+        for curve in &self.curves {
+            let inside: Vec<(f64, f64)> = curve
+                .points
+                .iter()
+                .copied()
+                .filter(|&(x, y)| (x0..=x1).contains(&x) && (y0..=y1).contains(&y))
+                .collect();
+            // Dashes: every other pair of consecutive points, in runs of four.
+            let dashes = inside
+                .windows(2)
+                .enumerate()
+                .filter(|(k, _)| (k / 4) % 2 == 0)
+                .map(|(_, w)| PathElement::new(vec![w[0], w[1]], WHITE.stroke_width(px(2))));
+            chart.draw_series(dashes)?;
+            if let Some(&end) = inside.last() {
+                chart.draw_series(std::iter::once(Text::new(
+                    curve.label.clone(),
+                    end,
+                    font(15.0 * s)
+                        .color(&WHITE)
+                        .pos(Pos::new(HPos::Right, VPos::Bottom)),
+                )))?;
+            }
+        }
         // Draw the frame again over the cells.
         let frame = chart.plotting_area().strip_coord_spec();
         let (fw, fh) = frame.dim_in_pixel();
@@ -325,6 +360,10 @@ mod tests {
                 x: 3.13,
                 label: "sqrt(g/a)".into(),
             }],
+            curves: vec![Curve {
+                label: "equilibrium".into(),
+                points: (0..50).map(|k| (1.0 + 0.06 * f64::from(k), 0.2)).collect(),
+            }],
             size: (700, 500),
         }
     }
@@ -361,6 +400,7 @@ mod tests {
             "alpha0 (rad)",
             "maximum tilt (rad)",
             "failed",
+            "equilibrium",
         ] {
             assert!(text.contains(label), "{label} missing");
         }

@@ -116,7 +116,8 @@ fn one_and_two_threads_write_the_same_results_and_a_complete_folder() {
         "omega0 (rad/s)",
         "alpha0 (rad)",
         "maximum tilt (rad)",
-        "sqrt(g/a)",
+        "√(g/a)",
+        "cos α* = g/(a ω₀²)",
     ] {
         assert!(svg.contains(label), "map without `{label}`");
     }
