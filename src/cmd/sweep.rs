@@ -332,7 +332,7 @@ fn progress_bar() -> ProgressBar {
     }
     let bar = ProgressBar::with_draw_target(Some(0), ProgressDrawTarget::stderr());
     if let Ok(style) = ProgressStyle::with_template(
-        "{bar:40} {pos}/{len} points, {msg}{elapsed_precise} elapsed, ETA {eta_precise}",
+        "{wide_bar} {pos}/{len} points, {msg}{elapsed_precise}, ETA {eta_precise}",
     ) {
         bar.set_style(style);
     }

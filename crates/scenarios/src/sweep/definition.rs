@@ -1234,23 +1234,23 @@ impl Draft {
         };
         let name = parameter.value.as_str();
         let key = |field: &str| format!("axes.{name}.{field}");
-        let spec_index =
-            defaults
-                .specs()
-                .iter()
-                .position(|s| s.name == name)
-                .ok_or_else(|| SweepFileError::Scene {
-                    at: parameter.at.clone(),
-                    key: "axes.parameter".into(),
-                    error: Box::new(defaults.get(name).err().unwrap_or(
-                        SceneError::UnknownParameter {
-                            scene: String::new(),
-                            name: name.to_string(),
-                            known: String::new(),
-                        },
-                    )),
-                })?;
-        let spec = defaults.specs()[spec_index];
+        // An unknown name: the scene's own error, which lists its parameters.
+        if let Err(error) = defaults.get(name) {
+            return Err(SweepFileError::Scene {
+                at: parameter.at.clone(),
+                key: "axes.parameter".into(),
+                error: Box::new(error),
+            });
+        }
+        let spec = defaults
+            .specs()
+            .iter()
+            .find(|s| s.name == name)
+            .ok_or_else(|| SweepFileError::Invalid {
+                at: parameter.at.clone(),
+                key: "axes.parameter".into(),
+                reason: format!("`{name}` has no specification"),
+            })?;
         // Every value must be a valid value of the parameter.
         let check = |x: f64, at: &Origin, field: &str| -> Result<(), SweepFileError> {
             let mut p = defaults.clone();

@@ -9,7 +9,7 @@ use std::time::{Duration, Instant};
 use rayon::prelude::*;
 
 use super::definition::SweepDefinition;
-use super::journal::{self, DEFINITION, JOURNAL, PointRow, Status};
+use super::journal::{self, DEFINITION, JOURNAL, PointRow, RESULTS, Status};
 use super::metrics::MetricRecorder;
 use super::{Shard, SweepError};
 
@@ -250,17 +250,11 @@ fn open_folder(
         let writer = journal::Writer::append(&journal_path, contents.complete_len)?;
         return Ok((writer, contents.rows));
     }
-    for stale in [super::journal::JOURNAL, "results.csv"] {
-        if dir.join(stale).exists() {
-            return Err(SweepError::Exists {
-                dir: dir.to_path_buf(),
-                found: if stale == "results.csv" {
-                    "results.csv"
-                } else {
-                    JOURNAL
-                },
-            });
-        }
+    if dir.join(RESULTS).exists() {
+        return Err(SweepError::Exists {
+            dir: dir.to_path_buf(),
+            found: RESULTS,
+        });
     }
     write_whole(&definition_path, text.as_bytes())?;
     let writer = journal::Writer::create(&journal_path, def, &text, shard)?;

@@ -18,7 +18,6 @@ use std::io::{BufWriter, Read, Seek, SeekFrom, Write};
 use std::path::{Path, PathBuf};
 
 use super::definition::SweepDefinition;
-use super::metrics::Metric;
 use super::{Shard, SweepError};
 
 /// How a point ended.
@@ -65,10 +64,12 @@ pub struct PointRow {
     pub reason: String,
 }
 
-/// File names in a sweep folder.
+/// The journal in a sweep folder.
 pub const JOURNAL: &str = "journal.csv";
 /// The resolved definition in a sweep folder.
 pub const DEFINITION: &str = "sweep.toml";
+/// The results in a sweep folder (written by the caller when the sweep is complete).
+pub const RESULTS: &str = "results.csv";
 
 /// FNV-1a (64 bit) of `bytes`: a stable fingerprint of the definition text.
 #[must_use]
@@ -406,10 +407,4 @@ impl Writer {
             source,
         })
     }
-}
-
-/// Which metric columns a definition has (for readers of `results.csv`).
-#[must_use]
-pub fn metric_columns(def: &SweepDefinition) -> Vec<Metric> {
-    def.metrics.clone()
 }

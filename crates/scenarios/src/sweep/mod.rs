@@ -82,7 +82,7 @@ pub use definition::{
     Axis, AxisValues, Origin, Override, Sampling, Spacing, SweepDefinition, SweepFileError,
 };
 pub use engine::{Progress, RunConfig, SweepReport, merge, run, run_point};
-pub use journal::{DEFINITION, JOURNAL, PointRow, Status, results_csv};
+pub use journal::{DEFINITION, JOURNAL, PointRow, RESULTS, Status, results_csv};
 pub use metrics::Metric;
 
 /// The built-in hoop-tilt map (`tumble sweep` without a file): how far the free hoop tilts
