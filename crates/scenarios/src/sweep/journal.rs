@@ -3,9 +3,9 @@
 //! A sweep folder holds `sweep.toml` (the resolved definition, [`SweepDefinition::to_toml`])
 //! and `journal.csv`: a first line `# tumble sweep journal v1, shard K/N, definition
 //! fnv1a64:HEX`, the CSV header of `results.csv`, then one row per finished point in the
-//! order points finished. Rows are appended and flushed in chunks; a process killed mid-write
-//! leaves at most a torn last line (no final newline), which reading drops and the next run
-//! truncates before appending. `results.csv` is the header and the rows sorted by index, so it
+//! order points finished. Rows are appended and flushed every 16 rows or 2 s; a process
+//! killed mid-write leaves at most a torn last line (no final newline), which reading drops and
+//! the next run truncates before appending. `results.csv` is the header and the rows sorted by index, so it
 //! depends only on the points' results.
 //!
 //! Every number is written in its shortest form that reads back to the same `f64` (ryu,
@@ -16,6 +16,7 @@
 use std::fs::{File, OpenOptions};
 use std::io::{BufWriter, Read, Seek, SeekFrom, Write};
 use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
 
 use super::definition::SweepDefinition;
 use super::{Shard, SweepError};
@@ -316,16 +317,20 @@ pub(crate) fn read(
     })
 }
 
-/// Appends rows to a journal, flushing every [`Writer::CHUNK`] rows.
+/// Appends rows to a journal, flushing every [`Writer::CHUNK`] rows or [`Writer::PERIOD`],
+/// whichever comes first.
 pub(crate) struct Writer {
     path: PathBuf,
     out: BufWriter<File>,
     unflushed: usize,
+    flushed_at: Instant,
 }
 
 impl Writer {
     /// Rows between flushes.
     pub const CHUNK: usize = 16;
+    /// Longest time rows stay unflushed (slow points: little work lost to a kill).
+    pub const PERIOD: Duration = Duration::from_secs(2);
 
     /// Creates a journal (which must not exist) with its first line and header.
     pub(crate) fn create(
@@ -348,6 +353,7 @@ impl Writer {
             path: path.to_path_buf(),
             out: BufWriter::new(file),
             unflushed: 0,
+            flushed_at: Instant::now(),
         };
         let mut head = csv::Writer::from_writer(Vec::new());
         head.write_record(def.columns())
@@ -376,6 +382,7 @@ impl Writer {
             path: path.to_path_buf(),
             out: BufWriter::new(file),
             unflushed: 0,
+            flushed_at: Instant::now(),
         })
     }
 
@@ -392,7 +399,7 @@ impl Writer {
             source,
         })?;
         self.unflushed += 1;
-        if self.unflushed >= Self::CHUNK {
+        if self.unflushed >= Self::CHUNK || self.flushed_at.elapsed() >= Self::PERIOD {
             self.flush()?;
         }
         Ok(())
@@ -401,6 +408,7 @@ impl Writer {
     /// Writes everything buffered to the file.
     pub(crate) fn flush(&mut self) -> Result<(), SweepError> {
         self.unflushed = 0;
+        self.flushed_at = Instant::now();
         self.out.flush().map_err(|source| SweepError::Io {
             path: self.path.clone(),
             what: "cannot write the journal",

@@ -59,8 +59,8 @@
 //!
 //! [`run`] computes the points of a [`Shard`] (`K/N`: the indices `i` with
 //! `i mod N = K − 1`) that a folder's journal does not hold yet, on a rayon pool of the
-//! requested size; each finished point's row is appended to the journal (flushed every few
-//! rows), so an interrupted sweep resumes without redoing finished points. A point that fails
+//! requested size; each finished point's row is appended to the journal (flushed every 16
+//! rows or 2 s), so an interrupted sweep resumes without redoing finished points. A point that fails
 //! — a typed error, a non-finite state, a panic (caught with `catch_unwind`) — has its status
 //! and reason in its row, and the sweep goes on. [`results_csv`] gives `results.csv`: one row
 //! per point in index order (`index`, axis values, metrics, `status`, `reason`), identical
