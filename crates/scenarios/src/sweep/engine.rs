@@ -1,5 +1,6 @@
 //! Running a sweep's points in parallel into a folder's journal, resuming, merging shards.
 
+use std::collections::BTreeMap;
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -208,7 +209,7 @@ fn open_folder(
     dir: &Path,
     shard: Shard,
     resume: bool,
-) -> Result<(journal::Writer, Vec<Option<PointRow>>), SweepError> {
+) -> Result<(journal::Writer, BTreeMap<u64, PointRow>), SweepError> {
     std::fs::create_dir_all(dir).map_err(|source| SweepError::Io {
         path: dir.to_path_buf(),
         what: "cannot create the output folder",
@@ -258,7 +259,7 @@ fn open_folder(
     }
     write_whole(&definition_path, text.as_bytes())?;
     let writer = journal::Writer::create(&journal_path, def, &text, shard)?;
-    Ok((writer, vec![None; def.points() as usize]))
+    Ok((writer, BTreeMap::new()))
 }
 
 /// Writes `bytes` to `path` through a temporary file renamed when complete.
@@ -318,19 +319,16 @@ pub fn run(
     let threads = config.threads.max(1);
     let (mut writer, mut rows) = open_folder(def, dir, config.shard, config.resume)?;
     let total = config.shard.size(def.points());
-    let pending: Vec<u64> = (0..def.points())
-        .filter(|&i| config.shard.contains(i) && rows[i as usize].is_none())
+    let pending: Vec<u64> = (config.shard.index - 1..def.points())
+        .step_by(usize::try_from(config.shard.count).unwrap_or(usize::MAX))
+        .filter(|i| !rows.contains_key(i))
         .collect();
     let resumed = total - pending.len() as u64;
     let mut state = Progress {
         total,
         finished: resumed,
         resumed,
-        failed: rows
-            .iter()
-            .flatten()
-            .filter(|r| r.status != Status::Ok)
-            .count() as u64,
+        failed: rows.values().filter(|r| r.status != Status::Ok).count() as u64,
     };
     progress(&state);
     let mut computed = 0;
@@ -346,8 +344,7 @@ pub fn run(
             if row.status != Status::Ok {
                 state.failed += 1;
             }
-            let index = row.index as usize;
-            rows[index] = Some(row);
+            rows.insert(row.index, row);
             progress(&state);
             Ok(())
         },
@@ -356,7 +353,7 @@ pub fn run(
     result?;
     flushed?;
     Ok(SweepReport {
-        rows: rows.into_iter().flatten().collect(),
+        rows: rows.into_values().collect(),
         total,
         computed,
         resumed,
@@ -394,7 +391,7 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<(SweepDefinition, SweepRepo
                 .into(),
         });
     }
-    let mut rows: Vec<Option<PointRow>> = vec![None; def.points() as usize];
+    let mut rows: BTreeMap<u64, PointRow> = BTreeMap::new();
     let mut seen: Vec<Option<PathBuf>> = Vec::new();
     let mut count = None;
     for dir in dirs {
@@ -426,7 +423,7 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<(SweepDefinition, SweepRepo
             )));
         }
         seen[(shard.index - 1) as usize] = Some(dir.clone());
-        let finished = contents.rows.iter().flatten().count() as u64;
+        let finished = contents.rows.len() as u64;
         if finished != shard.size(def.points()) {
             return Err(SweepError::Merge(format!(
                 "{}: shard {shard} is incomplete ({finished} of {} points); finish it with \
@@ -437,10 +434,7 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<(SweepDefinition, SweepRepo
                 dir.display()
             )));
         }
-        for row in contents.rows.into_iter().flatten() {
-            let index = row.index as usize;
-            rows[index] = Some(row);
-        }
+        rows.extend(contents.rows);
     }
     let missing: Vec<String> = seen
         .iter()
@@ -457,7 +451,7 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<(SweepDefinition, SweepRepo
     }
     // Write the merged folder: definition, then a complete journal in index order.
     let (mut writer, _) = open_folder(&def, out, Shard::ALL, false)?;
-    let rows: Vec<PointRow> = rows.into_iter().flatten().collect();
+    let rows: Vec<PointRow> = rows.into_values().collect();
     for row in &rows {
         writer.push(&def, row)?;
     }

@@ -5,14 +5,15 @@
 //! fnv1a64:HEX`, the CSV header of `results.csv`, then one row per finished point in the
 //! order points finished. Rows are appended and flushed every 16 rows or 2 s; a process
 //! killed mid-write leaves at most a torn last line (no final newline), which reading drops and
-//! the next run truncates before appending. `results.csv` is the header and the rows sorted by index, so it
-//! depends only on the points' results.
+//! the next run truncates before appending. `results.csv` is the header and the rows sorted by
+//! index, so it depends only on the points' results.
 //!
 //! Every number is written in its shortest form that reads back to the same `f64` (ryu,
 //! through the `csv` crate, as `tumble simulate` writes trajectories); counts as integers;
 //! undefined values (a threshold never crossed, the metrics of a failed point) as empty
 //! fields. A reason is one line (line breaks become spaces).
 
+use std::collections::BTreeMap;
 use std::fs::{File, OpenOptions};
 use std::io::{BufWriter, Read, Seek, SeekFrom, Write};
 use std::path::{Path, PathBuf};
@@ -219,8 +220,8 @@ fn parse_row(def: &SweepDefinition, record: &csv::StringRecord) -> Result<PointR
 pub(crate) struct Contents {
     /// The shard it belongs to.
     pub shard: Shard,
-    /// The rows of finished points, by index (`None`: not finished).
-    pub rows: Vec<Option<PointRow>>,
+    /// The rows of finished points, by index.
+    pub rows: BTreeMap<u64, PointRow>,
     /// Length in bytes of its complete lines (a torn last line is beyond).
     pub complete_len: u64,
 }
@@ -288,7 +289,7 @@ pub(crate) fn read(
             ),
         ));
     }
-    let mut rows: Vec<Option<PointRow>> = vec![None; def.points() as usize];
+    let mut rows: BTreeMap<u64, PointRow> = BTreeMap::new();
     for (k, record) in records.enumerate() {
         let line = k + 3;
         let record = record.map_err(|e| corrupt(line, e.to_string()))?;
@@ -299,15 +300,16 @@ pub(crate) fn read(
                 format!("point {} is not in shard {shard}", row.index),
             ));
         }
-        let slot = &mut rows[row.index as usize];
-        match slot {
+        match rows.get(&row.index) {
             Some(previous) if *previous != row => {
                 return Err(corrupt(
                     line,
                     format!("point {} appears twice with different results", row.index),
                 ));
             }
-            _ => *slot = Some(row),
+            _ => {
+                rows.insert(row.index, row);
+            }
         }
     }
     Ok(Contents {
