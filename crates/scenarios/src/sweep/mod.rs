@@ -62,10 +62,10 @@
 //! requested size; each finished point's row is appended to the journal (flushed every 16
 //! rows or 2 s), so an interrupted sweep resumes without redoing finished points. A point that
 //! fails — a typed error, a non-finite state, a panic (caught with `catch_unwind`) — has its
-//! status and reason in its row, and the sweep goes on. [`results_csv`] gives `results.csv`: one row
-//! per point in index order (`index`, axis values, metrics, `status`, `reason`), identical
-//! byte for byte whatever the threads, interruptions or shards. [`merge`] joins the folders of
-//! the `N` shards of a sweep into the folder an unsharded run writes.
+//! status and reason in its row, and the sweep goes on. [`results_csv`] gives `results.csv`:
+//! one row per point in index order (`index`, axis values, metrics, `status`, `reason`),
+//! identical byte for byte whatever the threads, interruptions or shards. [`merge`] joins the
+//! folders of the `N` shards of a sweep into the folder an unsharded run writes.
 //!
 //! The library never prints: progress goes to a callback, cancellation comes in through an
 //! `AtomicBool`.
