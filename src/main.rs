@@ -31,6 +31,9 @@ enum Command {
     Simulate(cmd::simulate::Args),
     /// Run a parameter sweep in parallel (a TOML sweep file, or the built-in hoop-tilt map)
     Sweep(cmd::sweep::Args),
+    /// Speed against error: every integrator's error at the final time against wall time and
+    /// evaluations (or, with --long, its energy error over a million steps)
+    WorkPrecision(cmd::work_precision::Args),
 }
 
 fn main() -> ExitCode {
@@ -42,6 +45,7 @@ fn main() -> ExitCode {
         Command::Scenes(args) => cmd::scenes::run(&args),
         Command::Simulate(args) => cmd::simulate::run(&args),
         Command::Sweep(args) => cmd::sweep::run(&args),
+        Command::WorkPrecision(args) => cmd::work_precision::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -7,3 +7,4 @@ pub mod kinematics;
 pub mod scenes;
 pub mod simulate;
 pub mod sweep;
+pub mod work_precision;

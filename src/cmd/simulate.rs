@@ -111,13 +111,17 @@ fn parse_set(raw: &str) -> Result<(&str, f64)> {
     Ok((key, x))
 }
 
-/// Stage one: the scene, parameters and options from the flags, validated.
-fn setup(args: &Args) -> Result<Setup> {
-    let (scene, origin, mut params, mut options) = if is_file(&args.scene) {
-        let file = SceneFile::load(Path::new(&args.scene))?;
+/// A scene argument (built-in name or TOML file) and `--set` overrides: the scene, where it
+/// came from (`builtin` or the file's path), its parameters, and the file's run options.
+pub(crate) fn load_scene(
+    arg: &str,
+    set: &[String],
+) -> Result<(&'static dyn Scene, String, Params, RunOptions)> {
+    let (scene, origin, mut params, options) = if is_file(arg) {
+        let file = SceneFile::load(Path::new(arg))?;
         (file.scene, file.origin, file.params, file.run)
     } else {
-        let scene = scenes::find(&args.scene).map_err(|e| match e {
+        let scene = scenes::find(arg).map_err(|e| match e {
             SceneError::UnknownScene { name, known } => anyhow::anyhow!(
                 "unknown scene `{name}` (and no file of that name); built-in scenes: {known}; \
                  a scene file must end in .toml"
@@ -127,12 +131,18 @@ fn setup(args: &Args) -> Result<Setup> {
         let params = scene.info().default_params();
         (scene, "builtin".to_string(), params, RunOptions::default())
     };
-    for raw in &args.set {
+    for raw in set {
         let (key, value) = parse_set(raw)?;
         params
             .set(key, value)
             .with_context(|| format!("--set {raw}"))?;
     }
+    Ok((scene, origin, params, options))
+}
+
+/// Stage one: the scene, parameters and options from the flags, validated.
+fn setup(args: &Args) -> Result<Setup> {
+    let (scene, origin, params, mut options) = load_scene(&args.scene, &args.set)?;
     if let Some(name) = &args.integrator {
         options.integrator = Some(name.clone());
     }
@@ -161,7 +171,7 @@ fn setup(args: &Args) -> Result<Setup> {
 
 /// A run-option error in the words of the command line (`--dt` for `dt`, `--t-end` for
 /// `t_end`).
-fn flag_words(e: &SceneError) -> String {
+pub(crate) fn flag_words(e: &SceneError) -> String {
     match e {
         SceneError::InvalidOption {
             option,
@@ -183,7 +193,7 @@ fn flag_words(e: &SceneError) -> String {
 }
 
 /// A number as a person would type it: plain, or in exponent form when very small or large.
-fn number(x: f64) -> String {
+pub(crate) fn number(x: f64) -> String {
     if x != 0.0 && x.is_finite() && !(1e-4..1e6).contains(&x.abs()) {
         format!("{x:e}")
     } else {

@@ -300,7 +300,7 @@ fn merge(args: &MergeArgs) -> Result<()> {
 }
 
 /// Writes `bytes` to `path` whole or not at all.
-fn write_atomically(path: &Path, bytes: &[u8]) -> Result<()> {
+pub(crate) fn write_atomically(path: &Path, bytes: &[u8]) -> Result<()> {
     use std::io::Write;
     let mut temp = output::temp_file_beside(path)?;
     temp.write_all(bytes)

@@ -20,6 +20,9 @@ const OKABE_ITO: [RGBColor; 7] = [
     RGBColor(0x00, 0x00, 0x00),
 ];
 
+/// Number of distinct series colours.
+pub const SERIES_COLOURS: usize = OKABE_ITO.len();
+
 /// The colour of the `i`-th series (cycling after seven).
 #[must_use]
 pub fn series(i: usize) -> RGBColor {

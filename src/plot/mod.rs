@@ -24,6 +24,7 @@ pub mod heatmap;
 pub mod slices;
 pub mod text;
 pub mod trajectory;
+pub mod work_precision;
 pub mod xy;
 
 use std::path::Path;

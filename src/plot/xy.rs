@@ -42,16 +42,8 @@ pub enum Mark {
     #[default]
     Line,
     /// Filled circles.
-    #[cfg_attr(
-        not(test),
-        expect(dead_code, reason = "for work-precision plots (next issue)")
-    )]
     Points,
     /// A polyline with a circle at every point.
-    #[cfg_attr(
-        not(test),
-        expect(dead_code, reason = "for work-precision plots (next issue)")
-    )]
     LineAndPoints,
 }
 
@@ -80,10 +72,6 @@ impl Series {
     /// A series with marks at its points (and lines between them with
     /// [`Mark::LineAndPoints`]).
     #[must_use]
-    #[cfg_attr(
-        not(test),
-        expect(dead_code, reason = "for work-precision plots (next issue)")
-    )]
     pub fn marked(label: impl Into<String>, points: Vec<(f64, f64)>, mark: Mark) -> Self {
         Series {
             label: label.into(),
@@ -106,6 +94,20 @@ pub struct Panel {
     pub y_scale: Scale,
     /// The series, drawn in order with the palette's colours.
     pub series: Vec<Series>,
+    /// Where the legend goes: the corner the data leave empty.
+    pub legend: LegendCorner,
+}
+
+/// A corner of the plot area for the legend.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum LegendCorner {
+    /// Upper right (the default).
+    #[default]
+    UpperRight,
+    /// Upper left (energy errors that grow with time).
+    UpperLeft,
+    /// Lower left (work–precision diagrams: cheap and accurate is the impossible corner).
+    LowerLeft,
 }
 
 impl Panel {
@@ -118,15 +120,19 @@ impl Panel {
             x_scale: Scale::Linear,
             y_scale: Scale::Linear,
             series: Vec::new(),
+            legend: LegendCorner::UpperRight,
         }
+    }
+
+    /// With the legend in `corner`.
+    #[must_use]
+    pub fn with_legend(mut self, corner: LegendCorner) -> Self {
+        self.legend = corner;
+        self
     }
 
     /// With the given x-axis scale.
     #[must_use]
-    #[cfg_attr(
-        not(test),
-        expect(dead_code, reason = "for log-log work-precision plots (next issue)")
-    )]
     pub fn with_x_scale(mut self, scale: Scale) -> Self {
         self.x_scale = scale;
         self
@@ -520,6 +526,10 @@ where
     }
     for (i, series) in panel.series.iter().enumerate() {
         let colour = colour::series(i);
+        // Past the palette's seven colours, the marker's shape and the line's dashes tell
+        // series of the same colour apart: circles and solid lines, then squares and dashes,
+        // then triangles and dots.
+        let cycle = i / colour::SERIES_COLOURS;
         let points: Vec<(f64, f64)> = series
             .points
             .iter()
@@ -528,34 +538,95 @@ where
             .collect();
         let line = colour.stroke_width(px(2));
         let radius = px(3);
-        let drawn = match series.mark {
-            Mark::Line => chart.draw_series(LineSeries::new(
-                decimate_min_max(&points, look.buckets),
+        let line_points = match series.mark {
+            Mark::Line => decimate_min_max(&points, look.buckets),
+            Mark::Points => Vec::new(),
+            Mark::LineAndPoints => points.clone(),
+        };
+        let dash = match cycle % 3 {
+            0 => None,
+            1 => Some((px(7), px(4))),
+            _ => Some((px(2), px(3))),
+        };
+        let marks = if series.mark == Mark::Line {
+            Vec::new()
+        } else {
+            points
+        };
+        let shape = cycle % 3;
+        let filled = colour.filled();
+        macro_rules! draw_marks {
+            () => {
+                match shape {
+                    0 => {
+                        chart.draw_series(marks.iter().map(|&p| Circle::new(p, radius, filled)))?
+                    }
+                    1 => chart.draw_series(marks.iter().map(|&p| {
+                        let r = radius as i32;
+                        EmptyElement::at(p) + Rectangle::new([(-r, -r), (r, r)], filled)
+                    }))?,
+                    _ => chart.draw_series(
+                        marks
+                            .iter()
+                            .map(|&p| TriangleMarker::new(p, radius + px(1), filled)),
+                    )?,
+                }
+            };
+        }
+        let has_line = !line_points.is_empty();
+        // The line (or, without one, the marks) carries the legend entry; marks go on top.
+        let anno = match dash {
+            _ if !has_line => draw_marks!(),
+            None => chart.draw_series(LineSeries::new(line_points.iter().copied(), line))?,
+            Some((size, spacing)) => chart.draw_series(DashedLineSeries::new(
+                line_points.iter().copied(),
+                size,
+                spacing,
                 line,
             ))?,
-            Mark::Points => chart.draw_series(
-                points
-                    .iter()
-                    .map(|&p| Circle::new(p, radius, colour.filled())),
-            )?,
-            Mark::LineAndPoints => {
-                chart.draw_series(LineSeries::new(points.iter().copied(), line))?;
-                chart.draw_series(
-                    points
-                        .iter()
-                        .map(|&p| Circle::new(p, radius, colour.filled())),
-                )?
-            }
         };
-        let length = px(22) as i32;
-        drawn
-            .label(series.label.as_str())
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + length, y)], line));
+        // The legend's sample: the line (solid, dashed or dotted, as drawn) and the mark.
+        let d = move |v: u32| px(v) as i32;
+        let mark_style = if series.mark == Mark::Line {
+            TRANSPARENT.filled()
+        } else {
+            filled
+        };
+        let r = radius as i32;
+        let anno = anno.label(series.label.as_str());
+        match shape {
+            0 => anno.legend(move |(x, y)| {
+                EmptyElement::at((x, y))
+                    + PathElement::new(vec![(0, 0), (d(22), 0)], line)
+                    + Circle::new((d(11), 0), r, mark_style)
+            }),
+            1 => anno.legend(move |(x, y)| {
+                EmptyElement::at((x, y))
+                    + PathElement::new(vec![(0, 0), (d(7), 0)], line)
+                    + PathElement::new(vec![(d(15), 0), (d(22), 0)], line)
+                    + Rectangle::new([(d(11) - r, -r), (d(11) + r, r)], mark_style)
+            }),
+            _ => anno.legend(move |(x, y)| {
+                EmptyElement::at((x, y))
+                    + PathElement::new(vec![(0, 0), (d(2), 0)], line)
+                    + PathElement::new(vec![(d(5), 0), (d(7), 0)], line)
+                    + PathElement::new(vec![(d(15), 0), (d(17), 0)], line)
+                    + PathElement::new(vec![(d(20), 0), (d(22), 0)], line)
+                    + TriangleMarker::new((d(11), 0), r + 1, mark_style)
+            }),
+        };
+        if has_line && !marks.is_empty() {
+            draw_marks!();
+        }
     }
     if !panel.series.is_empty() {
         chart
             .configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
+            .position(match panel.legend {
+                LegendCorner::UpperRight => SeriesLabelPosition::UpperRight,
+                LegendCorner::UpperLeft => SeriesLabelPosition::UpperLeft,
+                LegendCorner::LowerLeft => SeriesLabelPosition::LowerLeft,
+            })
             .margin(px(10))
             .legend_area_size(px(30))
             .background_style(WHITE.mix(0.85))

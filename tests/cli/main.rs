@@ -4,3 +4,4 @@ mod inertia;
 mod scenes;
 mod simulate;
 mod sweep;
+mod work_precision;

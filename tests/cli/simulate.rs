@@ -174,6 +174,7 @@ fn csv_values_round_trip_to_the_library_run_bit_for_bit() {
                 step: Some(StepControl::Fixed(0.005)),
                 t_end: Some(0.5),
                 every: None,
+                ..RunOptions::default()
             },
             &mut expected,
         )

@@ -24,8 +24,9 @@ pub mod scene;
 pub mod scene_file;
 pub mod scenes;
 pub mod sweep;
+pub mod work_precision;
 
 pub use error::{ModelError, SceneError};
 pub use lagrangian::{EulerLagrange, Lagrangian, LagrangianOde};
 pub use params::{Domain, ParamSpec, Params};
-pub use scene::{Recorder, RunOptions, RunSummary, Scene, SceneInfo, StepControl};
+pub use scene::{Observe, Recorder, RunOptions, RunSummary, Scene, SceneInfo, StepControl};

@@ -82,6 +82,19 @@ pub enum StepControl {
     Tolerance(f64),
 }
 
+/// Which states a run observes: computes a row of (coordinates, rates, diagnostics) for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Observe {
+    /// Every step: rows every `every` steps, and the energy error over every step (the default).
+    #[default]
+    EveryStep,
+    /// Only the initial and the final state, for timing a method (the work–precision report):
+    /// the diagnostics of a row (energy, angular momentum, the exact solution's error) can
+    /// cost as much as a step. [`RunSummary::max_energy_rel_err`] is then the error at the
+    /// final time only.
+    Ends,
+}
+
 /// How to run a scene; `None` fields take the scene's defaults.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct RunOptions {
@@ -93,6 +106,8 @@ pub struct RunOptions {
     pub t_end: Option<f64>,
     /// Record every `every`-th step (≥ 1).
     pub every: Option<u64>,
+    /// Which states are observed.
+    pub observe: Observe,
 }
 
 /// Run options with the defaults filled in and validated.
@@ -106,6 +121,20 @@ pub struct Resolved {
     pub t_end: f64,
     /// Output cadence.
     pub every: u64,
+    /// Which states are observed.
+    pub observe: Observe,
+}
+
+impl Resolved {
+    /// The driver over `[0, t_end]` that calls the observer at every step, or (with
+    /// [`Observe::Ends`]) only at the start and the end.
+    pub(crate) fn driver(&self) -> Result<Driver<'_>, SceneError> {
+        let driver = Driver::new(0.0, self.t_end)?;
+        Ok(match self.observe {
+            Observe::EveryStep => driver,
+            Observe::Ends => driver.every(u64::MAX)?,
+        })
+    }
 }
 
 impl RunOptions {
@@ -195,6 +224,7 @@ impl RunOptions {
             step,
             t_end,
             every,
+            observe: self.observe,
         })
     }
 }
@@ -382,7 +412,7 @@ where
     let counted = tumble_integrators::Counted::new(ByRef(problem));
     let mut y = y0;
     let mut observer = RowObserver::new(columns, energy_column, resolved.every, row, recorder);
-    let driver = Driver::new(0.0, resolved.t_end)?;
+    let driver = resolved.driver()?;
     let unsupported = |name: &str| SceneError::UnsupportedIntegrator {
         scene: String::new(),
         name: name.to_string(),

@@ -459,6 +459,7 @@ impl Source<'_> {
             step,
             t_end,
             every,
+            observe: crate::scene::Observe::EveryStep,
         };
         // Validate the table as a whole and point at the key the scene complains about.
         if let Err(error) = options.resolve(scene.info()) {
@@ -536,6 +537,7 @@ mod tests {
                 step: Some(StepControl::Fixed(0.001)),
                 t_end: Some(2.0),
                 every: Some(10),
+                observe: crate::scene::Observe::EveryStep,
             }
         );
     }

@@ -37,7 +37,7 @@ use tumble_integrators::rigid::{
     CoupledLagrangian, CoupledLgvi, CoupledState, CoupledVectorField, KineticBlocks,
     LieVectorField, Scalar, coupled_energy, coupled_state_from_velocities, coupled_velocities,
 };
-use tumble_integrators::{Driver, Ode};
+use tumble_integrators::Ode;
 use tumble_kinematics::EulerConvention;
 use tumble_kinematics::so3::hat;
 
@@ -202,6 +202,22 @@ fn write_row(
     out.copy_from_slice(&values);
 }
 
+/// The final state at time `t` of a flattened run (`y`, from any integrator of
+/// [`FlatFreeHoop`], a peer crate's included), as the scene's own run reports it for the
+/// work–precision error ([`crate::work_precision::state_error`]): the coordinates
+/// `qw, qx, qy, qz` (`w ≥ 0`; the error compares quaternions up to sign) and `alpha`, then
+/// the rates `omega_x, omega_y, omega_z` (body) and `alpha_dot`.
+#[must_use]
+pub fn final_state(model: &FreeHoop, t: f64, y: &Flat) -> crate::work_precision::FinalState {
+    let mut row = vec![0.0; FREE_HOOP.columns().len()];
+    write_row(model, t, &unflatten(y), &mut None, &mut row);
+    let n = FREE_HOOP.coordinates.len() + FREE_HOOP.rate_names.len();
+    crate::work_precision::FinalState {
+        t,
+        values: row[1..=n].to_vec(),
+    }
+}
+
 /// Column of the energy in a row.
 const ENERGY_COLUMN: usize = 10;
 
@@ -340,7 +356,7 @@ fn run_lgvi(
         },
         recorder,
     );
-    let report = Driver::new(0.0, resolved.t_end)?.run_fixed(
+    let report = resolved.driver()?.run_fixed(
         &mut stepper,
         model,
         &mut state,

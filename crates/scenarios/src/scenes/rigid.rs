@@ -32,12 +32,12 @@
 
 use nalgebra::{Matrix3, Rotation3, SVector, Vector3};
 use tumble_inertia::{MassSpec, THandle};
+use tumble_integrators::Ode;
 use tumble_integrators::rigid::{
     Dmv, EulerEquations, ExactFlow, ExactSplitting, ExactStepper, FreeRigidBody, GroupState,
     HeavyTop, Lgvi, LieVectorField, PrincipalAxisSplitting, RigidBody, RigidBodyState, cg3, rkmk4,
     split4, split6, split8,
 };
-use tumble_integrators::{Driver, Ode};
 use tumble_kinematics::so3::{exp, hat};
 
 use crate::error::SceneError;
@@ -160,7 +160,7 @@ fn run_rigid<B: RigidBody + Copy>(
             reason: format!("`{name}` has a fixed step: give a step instead"),
         });
     };
-    let driver = Driver::new(0.0, resolved.t_end)?;
+    let driver = resolved.driver()?;
     let mut observer = RowObserver::new(columns, ENERGY_COLUMN, resolved.every, row, recorder);
     let mut state = s0;
     macro_rules! group {

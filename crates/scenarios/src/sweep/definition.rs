@@ -479,6 +479,7 @@ impl SweepDefinition {
             step: Some(self.step),
             t_end: Some(self.t_end),
             every: Some(1),
+            observe: crate::scene::Observe::EveryStep,
         }
     }
 
@@ -1079,6 +1080,7 @@ impl Draft {
             step,
             t_end: t_end.as_ref().map(|(x, _)| *x),
             every: Some(1),
+            observe: crate::scene::Observe::EveryStep,
         };
         let resolved = options.resolve(info).map_err(|error| {
             let (key, at) = match &error {

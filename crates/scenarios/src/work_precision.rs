@@ -1,0 +1,752 @@
+//! Work–precision: the error at the final time against the cost of getting it, for every
+//! integrator that runs a scene (DESIGN §6).
+//!
+//! For each integrator, a ladder of steps (or tolerances, for the adaptive `dp5`/`dop853`) runs
+//! from an error of about `1e-2` down to the round-off floor or a time budget. Each rung records
+//! the error of the final state against a [`Reference`], the largest relative energy error over
+//! the run, the right-hand-side evaluations and the wall time (the median of several repeats of
+//! a run that observes only its first and last state, [`Observe::Ends`], so that the diagnostics
+//! a row computes are not charged to the method).
+//!
+//! # The error
+//!
+//! The final state is the row `simulate` writes at the final time: the coordinates and their
+//! rates (for rotating bodies the unit quaternion and the body angular velocity). Its error is
+//! the mixed absolute/relative maximum norm that Runge–Kutta error control uses,
+//! `max_i |yᵢ − yᵢ,ref| / (1 + |yᵢ,ref|)`, with the quaternion compared up to its sign
+//! (`q` and `−q` are the same rotation).
+//!
+//! # The reference
+//!
+//! `free-body` and `dzhanibekov`: the exact flow (Jacobi elliptic functions and Carlson's
+//! `R_J`; `exact` in the registry). Otherwise the highest Gauss–Legendre method the scene takes
+//! at a step 16 times below the scene's default, cross-checked against DOP853 at tolerance
+//! `1e-13`, and against itself at half the step; for a scene without Gauss–Legendre methods
+//! (`coriolis-drop` ends at an event, which needs dense output) DOP853 at `1e-13` is the
+//! reference and RK4 at the small step the cross-check. [`Reference::agreement`] says how far
+//! the two agree, which bounds what the ladder can resolve.
+
+use std::time::Instant;
+
+use tumble_integrators::registry::{self, Order};
+
+use crate::error::SceneError;
+use crate::params::Params;
+use crate::scene::{Observe, Recorder, RunOptions, RunSummary, Scene, SceneInfo, StepControl};
+use tumble_integrators::Flow;
+
+/// Keeps the first and the last row of a run (nothing in between).
+#[derive(Debug, Clone, Default)]
+pub struct FirstAndLast {
+    /// The first row (the initial state).
+    pub first: Vec<f64>,
+    /// The last row (the final state).
+    pub last: Vec<f64>,
+}
+
+impl Recorder for FirstAndLast {
+    fn row(&mut self, values: &[f64]) -> Flow {
+        if self.first.is_empty() {
+            self.first.extend_from_slice(values);
+        }
+        if self.last.len() == values.len() {
+            self.last.copy_from_slice(values);
+        } else {
+            self.last.clear();
+            self.last.extend_from_slice(values);
+        }
+        Flow::Continue
+    }
+}
+
+/// The final state of a run: its coordinates and rates.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FinalState {
+    /// Time reached.
+    pub t: f64,
+    /// Coordinates then rates, as the scene's CSV columns after `t`.
+    pub values: Vec<f64>,
+}
+
+/// Runs `scene` and returns its final state and summary.
+///
+/// # Errors
+/// Whatever the run reports.
+pub fn final_state(
+    scene: &dyn Scene,
+    params: &Params,
+    options: &RunOptions,
+) -> Result<(FinalState, RunSummary), SceneError> {
+    let info = scene.info();
+    let mut rec = FirstAndLast::default();
+    let summary = scene.simulate(params, options, &mut rec)?;
+    let n = state_len(info);
+    let values = rec.last.get(1..=n).map(<[f64]>::to_vec).unwrap_or_default();
+    Ok((
+        FinalState {
+            t: rec.last.first().copied().unwrap_or(f64::NAN),
+            values,
+        },
+        summary,
+    ))
+}
+
+/// Number of coordinates and rates in a row.
+fn state_len(info: &SceneInfo) -> usize {
+    let rates = if info.rate_names.is_empty() {
+        info.coordinates.len()
+    } else {
+        info.rate_names.len()
+    };
+    info.coordinates.len() + rates
+}
+
+/// Index of the quaternion's `qw` among the coordinates (followed by `qx, qy, qz`).
+fn quaternion_index(info: &SceneInfo) -> Option<usize> {
+    info.coordinates
+        .windows(4)
+        .position(|w| w == ["qw", "qx", "qy", "qz"])
+}
+
+/// The error of `y` against `reference` (module doc): `max |Δᵢ| / (1 + |refᵢ|)`, quaternion
+/// compared up to its sign, and `∞` when the times differ by more than round-off or a value
+/// is not finite.
+#[must_use]
+pub fn state_error(info: &SceneInfo, y: &FinalState, reference: &FinalState) -> f64 {
+    if y.values.len() != reference.values.len()
+        || (y.t - reference.t).abs() > 1e-9 * reference.t.abs().max(1.0)
+    {
+        return f64::INFINITY;
+    }
+    let quat = quaternion_index(info);
+    let norm = |flip: bool| {
+        y.values
+            .iter()
+            .zip(&reference.values)
+            .enumerate()
+            .map(|(i, (a, b))| {
+                let sign = match quat {
+                    Some(q) if flip && (q..q + 4).contains(&i) => -1.0,
+                    _ => 1.0,
+                };
+                (sign * a - b).abs() / (1.0 + b.abs())
+            })
+            .fold(
+                0.0f64,
+                |m, e| if e.is_nan() { f64::INFINITY } else { m.max(e) },
+            )
+    };
+    if quat.is_some() {
+        norm(false).min(norm(true))
+    } else {
+        norm(false)
+    }
+}
+
+/// How the reference was computed.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Reference {
+    /// The reference's final state.
+    pub state: FinalState,
+    /// What computed it (`exact`, or `gauss12 dt = 6.25e-4`).
+    pub method: String,
+    /// What cross-checked it (`dop853 tol = 1e-13`).
+    pub check: String,
+    /// [`state_error`] of the cross-check against the reference.
+    pub agreement: f64,
+    /// What the reference was compared with itself (`gauss12 dt = 3.125e-4`); empty for the
+    /// exact flow.
+    pub self_check: String,
+    /// [`state_error`] of that run against the reference.
+    pub self_agreement: f64,
+}
+
+/// Options of a work–precision study.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Config {
+    /// Horizon (s).
+    pub t_end: f64,
+    /// A ladder stops after a run that took longer than this (s) (its rung is kept).
+    pub max_run_seconds: f64,
+    /// A ladder stops after a run of more steps than this (a budget that, unlike time, does
+    /// not depend on the machine: for tests).
+    pub max_steps: u64,
+    /// A ladder stops once the error is below this.
+    pub error_floor: f64,
+    /// Largest error a rung may have to be kept (coarser rungs are skipped).
+    pub max_error: f64,
+}
+
+impl Config {
+    /// The defaults for `info`: its horizon, 0.5 s per run, errors from `1e-2` down to `1e-14`.
+    #[must_use]
+    pub fn new(info: &SceneInfo) -> Self {
+        Config {
+            t_end: info.default_t_end,
+            max_run_seconds: 0.5,
+            max_steps: u64::MAX,
+            error_floor: 1e-14,
+            max_error: 1e-1,
+        }
+    }
+}
+
+/// One run of a ladder.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Rung {
+    /// Integrator.
+    pub integrator: String,
+    /// Step or tolerance.
+    pub control: StepControl,
+    /// Accepted steps.
+    pub steps: u64,
+    /// Right-hand-side evaluations (steps for methods without a right-hand side).
+    pub evaluations: u64,
+    /// [`state_error`] at the final time.
+    pub error: f64,
+    /// Largest relative energy error over every step.
+    pub max_energy_rel_err: f64,
+    /// Median wall time (s) of `repeats` runs observing only the ends.
+    pub seconds: f64,
+    /// Timed repeats.
+    pub repeats: usize,
+}
+
+/// A rung that failed (a step too large for an implicit solver to converge, say).
+#[derive(Debug, Clone, PartialEq)]
+pub struct FailedRung {
+    /// Integrator.
+    pub integrator: String,
+    /// Step or tolerance.
+    pub control: StepControl,
+    /// Why.
+    pub reason: String,
+}
+
+/// The ladder of one integrator.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Ladder {
+    /// Integrator.
+    pub integrator: String,
+    /// Its order (`None`: exact).
+    pub order: Option<u32>,
+    /// Rungs from coarse to fine.
+    pub rungs: Vec<Rung>,
+    /// Rungs that failed.
+    pub failures: Vec<FailedRung>,
+    /// Why the ladder stopped.
+    pub stop: String,
+}
+
+fn options(integrator: &str, control: StepControl, t_end: f64, observe: Observe) -> RunOptions {
+    RunOptions {
+        integrator: Some(integrator.to_string()),
+        step: Some(control),
+        t_end: Some(t_end),
+        every: Some(1),
+        observe,
+    }
+}
+
+fn describe(integrator: &str, control: StepControl) -> String {
+    match control {
+        StepControl::Fixed(h) => format!("{integrator} dt = {h:e}"),
+        StepControl::Tolerance(tol) => format!("{integrator} tol = {tol:e}"),
+    }
+}
+
+/// The reference solution of `scene` at `t_end` (module doc).
+///
+/// # Errors
+/// A failing reference run.
+pub fn reference(scene: &dyn Scene, params: &Params, t_end: f64) -> Result<Reference, SceneError> {
+    let info = scene.info();
+    let has = |name: &str| info.integrators.contains(&name);
+    let h_small = refine_step(info.default_step / 16.0, t_end);
+    let dop853 = StepControl::Tolerance(1e-13);
+    let gauss = ["gauss12", "gauss10", "gauss8"]
+        .into_iter()
+        .find(|g| has(g));
+    let (method, control, check, check_control, self_control) = if has("exact") {
+        // One step of the exact flow over the whole horizon.
+        ("exact", StepControl::Fixed(t_end), "dop853", dop853, None)
+    } else if let Some(g) = gauss {
+        (
+            g,
+            StepControl::Fixed(h_small),
+            "dop853",
+            dop853,
+            Some(StepControl::Fixed(refine_step(h_small / 2.0, t_end))),
+        )
+    } else {
+        (
+            "dop853",
+            dop853,
+            "rk4",
+            StepControl::Fixed(h_small),
+            Some(StepControl::Tolerance(1e-14)),
+        )
+    };
+    let run = |name: &str, c: StepControl| {
+        final_state(scene, params, &options(name, c, t_end, Observe::Ends)).map(|(s, _)| s)
+    };
+    let state = run(method, control)?;
+    let checked = run(check, check_control)?;
+    let agreement = state_error(info, &checked, &state);
+    let (self_check, self_agreement) = match self_control {
+        Some(c) => {
+            let again = run(method, c)?;
+            (describe(method, c), state_error(info, &again, &state))
+        }
+        None => (String::new(), 0.0),
+    };
+    Ok(Reference {
+        state,
+        method: if method == "exact" {
+            "exact flow (one step over the horizon)".to_string()
+        } else {
+            describe(method, control)
+        },
+        check: describe(check, check_control),
+        agreement,
+        self_check,
+        self_agreement,
+    })
+}
+
+/// `h` adjusted down so that a whole number of steps fits the horizon.
+fn refine_step(h: f64, t_end: f64) -> f64 {
+    let n = (t_end / h).ceil().max(1.0);
+    t_end / n
+}
+
+/// Median of `values` (sorted in place).
+fn median(values: &mut [f64]) -> f64 {
+    values.sort_by(f64::total_cmp);
+    let n = values.len();
+    if n == 0 {
+        f64::NAN
+    } else if n % 2 == 1 {
+        values[n / 2]
+    } else {
+        0.5 * (values[n / 2 - 1] + values[n / 2])
+    }
+}
+
+/// Runs one rung: a monitored run (error, energy, evaluations), then timed runs that observe
+/// only the ends (3 repeats, more for short runs: 7 below 50 ms, 15 below 1 ms).
+///
+/// # Errors
+/// The run's error.
+pub fn rung(
+    scene: &dyn Scene,
+    params: &Params,
+    integrator: &str,
+    control: StepControl,
+    t_end: f64,
+    reference: &FinalState,
+) -> Result<Rung, SceneError> {
+    let info = scene.info();
+    let start = Instant::now();
+    let (state, summary) = final_state(
+        scene,
+        params,
+        &options(integrator, control, t_end, Observe::EveryStep),
+    )?;
+    let monitored = start.elapsed().as_secs_f64();
+    let repeats = if monitored < 1e-3 {
+        15
+    } else if monitored < 0.05 {
+        7
+    } else {
+        3
+    };
+    let quiet = options(integrator, control, t_end, Observe::Ends);
+    let mut times = Vec::with_capacity(repeats);
+    for _ in 0..repeats {
+        let start = Instant::now();
+        let (timed, _) = final_state(scene, params, &quiet)?;
+        times.push(start.elapsed().as_secs_f64());
+        // Observing only the ends must not change the run (the quaternion's sign, chosen
+        // continuous along the observed states, may differ).
+        debug_assert!(
+            state_error(info, &timed, &state) == 0.0,
+            "observing only the ends changed the run: {timed:?} against {state:?}"
+        );
+    }
+    Ok(Rung {
+        integrator: integrator.to_string(),
+        control,
+        steps: summary.steps,
+        evaluations: summary.evaluations,
+        error: state_error(info, &state, reference),
+        max_energy_rel_err: summary.max_energy_rel_err,
+        seconds: median(&mut times),
+        repeats,
+    })
+}
+
+/// The ratio between successive step counts of a ladder for a method of order `p`: about a
+/// factor 4 less error per rung (`2^{2/p}`), between `2^{1/4}` and 2.
+fn step_ratio(p: u32) -> f64 {
+    2f64.powf((2.0 / f64::from(p.max(1))).clamp(0.25, 1.0))
+}
+
+/// Runs the ladder of `integrator` (module doc). `progress` sees each rung as it completes.
+///
+/// # Errors
+/// An integrator that the registry does not know or the scene does not take; failures of single
+/// rungs are recorded in [`Ladder::failures`] instead.
+pub fn ladder(
+    scene: &dyn Scene,
+    params: &Params,
+    integrator: &str,
+    reference: &FinalState,
+    config: &Config,
+    progress: &mut dyn FnMut(&Rung),
+) -> Result<Ladder, SceneError> {
+    let info = scene.info();
+    // Validates the integrator for this scene.
+    RunOptions {
+        integrator: Some(integrator.to_string()),
+        t_end: Some(config.t_end),
+        ..RunOptions::default()
+    }
+    .resolve(info)?;
+    let method = registry::find(integrator)?;
+    let order = match method.order {
+        Order::Finite(p) => Some(p),
+        Order::Exact => None,
+    };
+    let mut out = Ladder {
+        integrator: integrator.to_string(),
+        order,
+        rungs: Vec::new(),
+        failures: Vec::new(),
+        stop: String::new(),
+    };
+    let t_end = config.t_end;
+    let run = |control: StepControl, out: &mut Ladder| -> Option<Rung> {
+        match rung(scene, params, integrator, control, t_end, reference) {
+            Ok(r) => Some(r),
+            Err(e) => {
+                out.failures.push(FailedRung {
+                    integrator: integrator.to_string(),
+                    control,
+                    reason: e.to_string(),
+                });
+                None
+            }
+        }
+    };
+    let Some(p) = order else {
+        // The exact flow: one rung at the scene's default step.
+        let h = refine_step(info.default_step, t_end);
+        if let Some(r) = run(StepControl::Fixed(h), &mut out) {
+            progress(&r);
+            out.rungs.push(r);
+        }
+        out.stop = "exact flow: one rung".into();
+        return Ok(out);
+    };
+    let adaptive = method.properties.adaptive;
+    // Rung k: a tolerance 10^{-(2 + k/2)}, or n_k = n₀ r^k steps from a start coarse enough.
+    let control_at = |k: i32, n0: f64| {
+        if adaptive {
+            StepControl::Tolerance(10f64.powf(-2.0 - f64::from(k) / 2.0))
+        } else {
+            let n = (n0 * step_ratio(p).powi(k)).round().max(1.0);
+            StepControl::Fixed(t_end / n)
+        }
+    };
+    let mut n0 = (t_end / info.default_step / 8.0).round().max(1.0);
+    let mut k = 0;
+    if !adaptive {
+        // Coarsen until the error exceeds max_error (or the run fails, or one step is left).
+        loop {
+            match run(control_at(0, n0), &mut out) {
+                Some(r) if r.error <= config.max_error && n0 > 1.0 => n0 = (n0 / 4.0).ceil(),
+                _ => break,
+            }
+        }
+        out.failures.clear();
+    }
+    let mut best = f64::INFINITY;
+    let mut stalled = 0;
+    loop {
+        let control = control_at(k, n0);
+        k += 1;
+        if out.rungs.last().is_some_and(|last| last.control == control) {
+            continue;
+        }
+        let Some(r) = run(control, &mut out) else {
+            if out.rungs.is_empty() && k < 40 {
+                continue;
+            }
+            out.stop = "a run failed".into();
+            break;
+        };
+        let (error, seconds, steps) = (r.error, r.seconds, r.steps);
+        if error <= config.max_error {
+            progress(&r);
+            out.rungs.push(r);
+        }
+        if error < best / 1.5 {
+            best = error;
+            stalled = 0;
+        } else if best < 1e-9 && !adaptive {
+            // Not decreasing once small: round-off (a coarse, pre-asymptotic error, or an
+            // adaptive method at loose tolerances, may wander for a rung or two).
+            stalled += 1;
+        }
+        if error <= config.error_floor {
+            out.stop = format!("error below {:e}", config.error_floor);
+            break;
+        }
+        if stalled >= 3 {
+            out.stop = "round-off floor: the error stopped decreasing".into();
+            break;
+        }
+        if seconds > config.max_run_seconds {
+            out.stop = format!("a run took longer than {} s", config.max_run_seconds);
+            break;
+        }
+        if steps > config.max_steps {
+            out.stop = format!("a run took more than {} steps", config.max_steps);
+            break;
+        }
+        if adaptive && k > 26 {
+            out.stop = "tolerance 1e-15 reached".into();
+            break;
+        }
+    }
+    Ok(out)
+}
+
+/// The least-squares slope of `log10 error` against `log10 x` over the rungs whose error lies
+/// in `[lo, hi]` (`None` with fewer than 3 such rungs).
+#[must_use]
+pub fn fitted_slope(rungs: &[Rung], x: impl Fn(&Rung) -> f64, lo: f64, hi: f64) -> Option<f64> {
+    let pts: Vec<(f64, f64)> = rungs
+        .iter()
+        .filter(|r| r.error >= lo && r.error <= hi)
+        .map(|r| (x(r).log10(), r.error.log10()))
+        .collect();
+    slope(&pts)
+}
+
+/// The relative energy error of a long run, reduced to its maximum over logarithmically
+/// spaced time bins (the memory does not grow with the number of steps).
+#[derive(Debug, Clone, PartialEq)]
+pub struct EnergyHistory {
+    /// Upper edge of each bin (s); bin `i` covers `(edges[i-1], edges[i]]`, bin 0 `[0, edges[0]]`.
+    pub edges: Vec<f64>,
+    /// Largest `|E − E₀|/|E₀|` in each bin (`NaN` for a bin no step fell in).
+    pub max_rel_err: Vec<f64>,
+    column: usize,
+}
+
+impl EnergyHistory {
+    /// `bins` bins spaced evenly in `log t` from `first` to `t_end`; `column` is the index of
+    /// `energy_rel_err` in the scene's rows.
+    #[must_use]
+    pub fn new(first: f64, t_end: f64, bins: usize, column: usize) -> Self {
+        let bins = bins.max(1);
+        let ratio = (t_end / first).max(1.0).powf(1.0 / bins as f64);
+        let edges = (1..=bins)
+            .map(|i| {
+                if i == bins {
+                    t_end
+                } else {
+                    first * ratio.powi(i as i32)
+                }
+            })
+            .collect();
+        EnergyHistory {
+            edges,
+            max_rel_err: vec![f64::NAN; bins],
+            column,
+        }
+    }
+
+    /// `(t, max error)` of the bins that hold a step after the initial state.
+    #[must_use]
+    pub fn points(&self) -> Vec<(f64, f64)> {
+        self.edges
+            .iter()
+            .zip(&self.max_rel_err)
+            .filter(|(_, e)| !e.is_nan())
+            .map(|(t, e)| (*t, *e))
+            .collect()
+    }
+
+    /// The least-squares exponent `a` of `max error ∝ tᵃ` over the bins in `[t_end/10^decades,
+    /// t_end]`: about 0 for a bounded error, 1/2 for round-off growing like `√t` (Brouwer's
+    /// law), 1 for a linear drift. `None` with fewer than 3 bins holding a positive error.
+    #[must_use]
+    pub fn growth_exponent(&self, decades: f64) -> Option<f64> {
+        let t_end = *self.edges.last()?;
+        let pts: Vec<(f64, f64)> = self
+            .points()
+            .into_iter()
+            .filter(|(t, e)| *t >= t_end / 10f64.powf(decades) && *e > 0.0)
+            .map(|(t, e)| (t.log10(), e.log10()))
+            .collect();
+        slope(&pts)
+    }
+}
+
+impl Recorder for EnergyHistory {
+    fn row(&mut self, values: &[f64]) -> Flow {
+        let t = values[0];
+        if t > 0.0 {
+            let i = self.edges.partition_point(|&edge| edge < t);
+            if let (Some(slot), Some(&e)) = (self.max_rel_err.get_mut(i), values.get(self.column)) {
+                *slot = if slot.is_nan() { e } else { slot.max(e) };
+            }
+        }
+        Flow::Continue
+    }
+}
+
+/// Least-squares slope of `y` against `x` (`None` below 3 points or when all `x` are equal).
+fn slope(pts: &[(f64, f64)]) -> Option<f64> {
+    if pts.len() < 3 {
+        return None;
+    }
+    let n = pts.len() as f64;
+    let (mx, my) = pts
+        .iter()
+        .fold((0.0, 0.0), |(a, b), (x, y)| (a + x / n, b + y / n));
+    let (sxy, sxx) = pts.iter().fold((0.0, 0.0), |(a, b), (x, y)| {
+        (a + (x - mx) * (y - my), b + (x - mx) * (x - mx))
+    });
+    (sxx > 0.0).then(|| sxy / sxx)
+}
+
+/// One long run: its method, step control, summary and energy history.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LongRun {
+    /// Integrator.
+    pub integrator: String,
+    /// Step or tolerance.
+    pub control: StepControl,
+    /// The run's summary, or why it failed.
+    pub result: Result<RunSummary, String>,
+    /// Wall time (s); runs share the machine's cores, so only a rough figure.
+    pub seconds: f64,
+    /// Relative energy error against time.
+    pub history: EnergyHistory,
+}
+
+/// The integrators a long run compares by default: the scene's symplectic, variational and
+/// Lie-group methods with a fixed step (not the exact flow).
+#[must_use]
+pub fn long_run_methods(info: &SceneInfo) -> Vec<&'static str> {
+    info.integrators
+        .iter()
+        .copied()
+        .filter(|name| {
+            registry::find(name).is_ok_and(|m| {
+                !m.properties.adaptive
+                    && !m.properties.exact
+                    && (m.properties.symplectic || m.properties.lie_group)
+            })
+        })
+        .collect()
+}
+
+/// Seconds of wall time per simulated second of `integrator` at `control`, from the median of
+/// 3 runs over `t_probe` that observe only their ends.
+///
+/// # Errors
+/// The run's error.
+pub fn cost_per_second(
+    scene: &dyn Scene,
+    params: &Params,
+    integrator: &str,
+    control: StepControl,
+    t_probe: f64,
+) -> Result<f64, SceneError> {
+    let quiet = options(integrator, control, t_probe, Observe::Ends);
+    let mut times = Vec::with_capacity(3);
+    for _ in 0..3 {
+        let start = Instant::now();
+        final_state(scene, params, &quiet)?;
+        times.push(start.elapsed().as_secs_f64());
+    }
+    Ok(median(&mut times) / t_probe)
+}
+
+/// The tolerance among `1e-4 … 1e-13` (decades) at which `adaptive` costs closest (in the
+/// log) to `target` seconds per simulated second, probed over `t_probe`, with its cost.
+///
+/// # Errors
+/// A failing probe.
+pub fn matching_tolerance(
+    scene: &dyn Scene,
+    params: &Params,
+    adaptive: &str,
+    target: f64,
+    t_probe: f64,
+) -> Result<(f64, f64), SceneError> {
+    let mut best = (1e-4, f64::INFINITY, f64::INFINITY);
+    for k in 4..=13 {
+        let tol = 10f64.powi(-k);
+        let cost = cost_per_second(
+            scene,
+            params,
+            adaptive,
+            StepControl::Tolerance(tol),
+            t_probe,
+        )?;
+        let distance = (cost / target).ln().abs();
+        if distance < best.2 {
+            best = (tol, cost, distance);
+        }
+        if cost > 4.0 * target {
+            break;
+        }
+    }
+    Ok((best.0, best.1))
+}
+
+/// Runs `runs` (integrator, step or tolerance) over `[0, t_end]` in parallel, each recording
+/// its relative energy error in `bins` logarithmic time bins from `first` on.
+#[must_use]
+pub fn long_runs(
+    scene: &dyn Scene,
+    params: &Params,
+    runs: &[(String, StepControl)],
+    t_end: f64,
+    first: f64,
+    bins: usize,
+) -> Vec<LongRun> {
+    use rayon::prelude::*;
+    let column = scene
+        .info()
+        .columns()
+        .iter()
+        .position(|c| c == "energy_rel_err")
+        .unwrap_or(usize::MAX);
+    runs.par_iter()
+        .map(|(integrator, control)| {
+            let mut history = EnergyHistory::new(first, t_end, bins, column);
+            let start = Instant::now();
+            let result = scene
+                .simulate(
+                    params,
+                    &options(integrator, *control, t_end, Observe::EveryStep),
+                    &mut history,
+                )
+                .map_err(|e| e.to_string());
+            LongRun {
+                integrator: integrator.clone(),
+                control: *control,
+                result,
+                seconds: start.elapsed().as_secs_f64(),
+                history,
+            }
+        })
+        .collect()
+}

@@ -1,0 +1,553 @@
+//! `tumble work-precision`: speed against error for every integrator that runs a scene, or
+//! (`--long`) the relative energy error over a million steps and more.
+//!
+//! The numerics live in `tumble_scenarios::work_precision` (ladders, reference, error norm,
+//! long runs); this module validates the flags, prints progress and a summary, and writes
+//! `work-precision.csv`, `manifest.json` and the plots (`work-precision.png`/`.svg`, or
+//! `long.csv`, `long.png`/`.svg`) into the output folder.
+
+use std::fmt::Write as _;
+use std::path::PathBuf;
+
+use anyhow::{Context, Result, bail};
+use serde_json::json;
+use tumble_integrators::registry;
+use tumble_scenarios::work_precision::{
+    self, Config, Ladder, LongRun, Reference, fitted_slope, long_run_methods,
+};
+use tumble_scenarios::{Params, Scene, StepControl};
+
+use super::simulate::{flag_words, load_scene, number};
+use super::sweep::write_atomically;
+use crate::plot;
+use crate::plot::work_precision::Curve;
+use crate::plot::xy::Series;
+
+/// Flags of `tumble work-precision`.
+#[derive(clap::Args, Debug)]
+pub struct Args {
+    /// A built-in scene (`tumble scenes`) or a TOML scene file.
+    #[arg(value_name = "SCENE")]
+    pub scene: String,
+    /// Set a parameter of the scene (repeat for several), as for `tumble simulate`.
+    #[arg(
+        long = "set",
+        value_name = "KEY=VALUE",
+        allow_hyphen_values = true,
+        action = clap::ArgAction::Append
+    )]
+    pub set: Vec<String>,
+    /// Integrators to compare, comma-separated (default: every one the scene takes; with
+    /// `--long`, its symplectic, variational and Lie-group ones).
+    #[arg(long, value_name = "A,B,...", value_delimiter = ',')]
+    pub integrators: Vec<String>,
+    /// Horizon in seconds (default: the scene's; ignored with `--long`, whose horizon is
+    /// `--long-steps` steps of the scene's default step).
+    #[arg(long = "t-end", value_name = "T", allow_negative_numbers = true)]
+    pub t_end: Option<f64>,
+    /// Output folder (default `out/work-precision/SCENE`, or `.../SCENE-long`).
+    #[arg(short = 'o', long = "output", value_name = "DIR")]
+    pub output: Option<PathBuf>,
+    /// A ladder stops after a run that took longer than this many seconds.
+    #[arg(long = "max-seconds", value_name = "S", default_value_t = 0.5)]
+    pub max_seconds: f64,
+    /// Long-run mode: relative energy error against time over `--long-steps` steps.
+    #[arg(long)]
+    pub long: bool,
+    /// Steps of a long run (at the scene's default step).
+    #[arg(long = "long-steps", value_name = "N", default_value_t = 1 << 20)]
+    pub long_steps: u64,
+}
+
+/// Runs the subcommand.
+///
+/// # Errors
+/// Invalid flags (before any run), a failing reference, an unwritable output folder.
+pub fn run(args: &Args) -> Result<()> {
+    let (scene, origin, params, file_options) = load_scene(&args.scene, &args.set)?;
+    let info = scene.info();
+    for name in &args.integrators {
+        if !info.integrators.contains(&name.as_str()) {
+            bail!(
+                "--integrators: `{name}` cannot run scene `{}`; applicable: {}",
+                info.name,
+                info.integrators.join(", ")
+            );
+        }
+    }
+    if !(args.max_seconds.is_finite() && args.max_seconds > 0.0) {
+        bail!(
+            "--max-seconds {}: must be finite and positive",
+            number(args.max_seconds)
+        );
+    }
+    let stem = if origin == "builtin" {
+        info.name.to_string()
+    } else {
+        PathBuf::from(&origin)
+            .file_stem()
+            .map_or_else(|| info.name.to_string(), |s| s.to_string_lossy().into())
+    };
+    if args.long {
+        let dir = args.output.clone().unwrap_or_else(|| {
+            PathBuf::from("out")
+                .join("work-precision")
+                .join(format!("{stem}-long"))
+        });
+        return long(scene, &origin, &params, args, &dir);
+    }
+    let t_end = args
+        .t_end
+        .or(file_options.t_end)
+        .unwrap_or(info.default_t_end);
+    let mut config = Config::new(info);
+    config.t_end = t_end;
+    config.max_run_seconds = args.max_seconds;
+    // Validates the horizon in the scene's words.
+    tumble_scenarios::RunOptions {
+        t_end: Some(t_end),
+        ..Default::default()
+    }
+    .resolve(info)
+    .map_err(|e| anyhow::anyhow!("{}: {}", info.name, flag_words(&e)))?;
+    let integrators: Vec<String> = if args.integrators.is_empty() {
+        info.integrators.iter().map(|s| (*s).to_string()).collect()
+    } else {
+        args.integrators.clone()
+    };
+    let dir = args
+        .output
+        .clone()
+        .unwrap_or_else(|| PathBuf::from("out").join("work-precision").join(stem));
+    std::fs::create_dir_all(&dir)
+        .with_context(|| format!("cannot create the output folder {}", dir.display()))?;
+
+    eprintln!(
+        "work-precision  {} ({origin}), t in [0, {t_end}] s",
+        info.name
+    );
+    let reference = work_precision::reference(scene, &params, t_end)
+        .with_context(|| format!("{}: the reference run failed", info.name))?;
+    eprintln!("reference       {}", reference.method);
+    eprintln!(
+        "cross-check     {}: agrees to {:.1e}",
+        reference.check, reference.agreement
+    );
+    if !reference.self_check.is_empty() {
+        eprintln!(
+            "self-check      {}: agrees to {:.1e}",
+            reference.self_check, reference.self_agreement
+        );
+    }
+    let mut ladders = Vec::with_capacity(integrators.len());
+    for name in &integrators {
+        let mut on_rung = |r: &work_precision::Rung| {
+            eprintln!(
+                "  {:<13} {:<20} error {:9.2e}  {:>10} evaluations  {}",
+                name,
+                control_words(r.control),
+                r.error,
+                r.evaluations,
+                seconds(r.seconds)
+            );
+        };
+        let ladder = work_precision::ladder(
+            scene,
+            &params,
+            name,
+            &reference.state,
+            &config,
+            &mut on_rung,
+        )?;
+        eprintln!("  {name:<13} stopped: {}", ladder.stop);
+        ladders.push(ladder);
+    }
+
+    write_atomically(
+        &dir.join("work-precision.csv"),
+        csv_text(&ladders)?.as_bytes(),
+    )?;
+    let title = format!("{}: error at t = {t_end} s against cost", info.name);
+    let subtitle = format!(
+        "{}; reference: {} (cross-check {}: {:.1e})",
+        parameter_words(&params),
+        reference.method,
+        reference.check,
+        reference.agreement
+    );
+    let curves: Vec<Curve> = ladders
+        .iter()
+        .filter(|l| !l.rungs.is_empty())
+        .map(|l| Curve {
+            label: method_label(l),
+            rungs: l
+                .rungs
+                .iter()
+                .map(|r| (r.seconds, r.evaluations as f64, r.error))
+                .collect(),
+        })
+        .collect();
+    let figure = plot::work_precision::figure(title, subtitle, &curves);
+    for ext in ["png", "svg"] {
+        plot::save(&figure, &dir.join(format!("work-precision.{ext}")))?;
+    }
+    let manifest = manifest_json(
+        info.name, &origin, &params, t_end, &config, &reference, &ladders,
+    );
+    let mut text = serde_json::to_string_pretty(&manifest)?;
+    text.push('\n');
+    write_atomically(&dir.join("manifest.json"), text.as_bytes())?;
+
+    print!("{}", summary(&ladders, t_end));
+    eprintln!("output          {}", dir.display());
+    Ok(())
+}
+
+/// `rk4 (4)`, `exact`.
+fn method_label(l: &Ladder) -> String {
+    match l.order {
+        Some(p) => format!("{} ({p})", l.integrator),
+        None => format!("{} (exact)", l.integrator),
+    }
+}
+
+fn control_words(c: StepControl) -> String {
+    match c {
+        StepControl::Fixed(h) => format!("dt = {h:.3e}"),
+        StepControl::Tolerance(t) => format!("tol = {t:.1e}"),
+    }
+}
+
+fn seconds(s: f64) -> String {
+    if s < 1e-3 {
+        format!("{:.1} µs", 1e6 * s)
+    } else if s < 1.0 {
+        format!("{:.2} ms", 1e3 * s)
+    } else {
+        format!("{s:.3} s")
+    }
+}
+
+fn parameter_words(params: &Params) -> String {
+    params
+        .iter()
+        .map(|(k, v)| format!("{k} = {}", round(v)))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+fn round(v: f64) -> String {
+    let s = format!("{v:.6}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    if s == "-0" { "0".into() } else { s.into() }
+}
+
+/// The CSV: one row per rung.
+fn csv_text(ladders: &[Ladder]) -> Result<String> {
+    let mut w = csv::Writer::from_writer(Vec::new());
+    w.write_record([
+        "integrator",
+        "order",
+        "dt",
+        "tol",
+        "steps",
+        "evaluations",
+        "error",
+        "max_energy_rel_err",
+        "wall_time_s",
+        "repeats",
+    ])?;
+    for l in ladders {
+        for r in &l.rungs {
+            let (dt, tol) = match r.control {
+                StepControl::Fixed(h) => (h.to_string(), String::new()),
+                StepControl::Tolerance(t) => (String::new(), t.to_string()),
+            };
+            w.write_record([
+                l.integrator.clone(),
+                l.order.map_or_else(|| "exact".into(), |p| p.to_string()),
+                dt,
+                tol,
+                r.steps.to_string(),
+                r.evaluations.to_string(),
+                r.error.to_string(),
+                r.max_energy_rel_err.to_string(),
+                r.seconds.to_string(),
+                r.repeats.to_string(),
+            ])?;
+        }
+    }
+    Ok(String::from_utf8(w.into_inner()?)?)
+}
+
+fn manifest_json(
+    scene: &str,
+    origin: &str,
+    params: &Params,
+    t_end: f64,
+    config: &Config,
+    reference: &Reference,
+    ladders: &[Ladder],
+) -> serde_json::Value {
+    json!({
+        "command": "work-precision",
+        "tumble_version": env!("CARGO_PKG_VERSION"),
+        "scene": scene,
+        "origin": origin,
+        "parameters": params.iter().map(|(k, v)| (k.to_string(), json!(v))).collect::<serde_json::Map<_, _>>(),
+        "t_end": t_end,
+        "error": "max_i |y_i - y_ref_i| / (1 + |y_ref_i|) over the final coordinates and rates (quaternion up to sign)",
+        "wall_time": "median of repeated runs observing only the initial and final states",
+        "max_run_seconds": config.max_run_seconds,
+        "reference": {
+            "method": reference.method,
+            "cross_check": reference.check,
+            "agreement": reference.agreement,
+            "self_check": reference.self_check,
+            "self_agreement": reference.self_agreement,
+        },
+        "integrators": ladders.iter().map(|l| json!({
+            "name": l.integrator,
+            "order": l.order,
+            "rungs": l.rungs.len(),
+            "stopped": l.stop,
+            "failures": l.failures.iter().map(|f| json!({
+                "control": control_words(f.control),
+                "reason": f.reason,
+            })).collect::<Vec<_>>(),
+        })).collect::<Vec<_>>(),
+    })
+}
+
+/// Per integrator: rungs, the observed order (minus the fitted slope of error against steps
+/// over errors in [1e-11, 1e-3]; meaningless for adaptive methods), the best error, and the interpolated cost of reaching 1e-8.
+fn summary(ladders: &[Ladder], t_end: f64) -> String {
+    let mut out = String::new();
+    let _ = writeln!(
+        out,
+        "{:<14} {:>5} {:>5} {:>14} {:>10} {:>14} {:>16}",
+        "integrator",
+        "order",
+        "rungs",
+        "observed order",
+        "best error",
+        "time at 1e-8",
+        "evals at 1e-8"
+    );
+    let mut at_target: Vec<(f64, &str)> = Vec::new();
+    for l in ladders {
+        let slope_steps = fitted_slope(&l.rungs, |r| r.steps as f64, 1e-11, 1e-3);
+        let best = l
+            .rungs
+            .iter()
+            .map(|r| r.error)
+            .fold(f64::INFINITY, f64::min);
+        let time = cost_at(&l.rungs, 1e-8, |r| r.seconds);
+        let evals = cost_at(&l.rungs, 1e-8, |r| r.evaluations as f64);
+        if let Some(t) = time {
+            at_target.push((t, &l.integrator));
+        }
+        let _ = writeln!(
+            out,
+            "{:<14} {:>5} {:>5} {:>14} {:>10} {:>14} {:>16}",
+            l.integrator,
+            l.order.map_or_else(|| "exact".into(), |p| p.to_string()),
+            l.rungs.len(),
+            slope_steps.map_or_else(|| "—".into(), |s| format!("{:.2}", -s)),
+            if best.is_finite() {
+                format!("{best:.1e}")
+            } else {
+                "—".into()
+            },
+            time.map_or_else(|| "—".into(), seconds),
+            evals.map_or_else(|| "—".into(), |e| format!("{e:.0}")),
+        );
+    }
+    at_target.sort_by(|a, b| a.0.total_cmp(&b.0));
+    if let Some((t, name)) = at_target.first() {
+        let _ = writeln!(
+            out,
+            "fastest to an error of 1e-8 at t = {t_end} s: {name} ({})",
+            seconds(*t)
+        );
+        if let Some((t2, name2)) = at_target.get(1) {
+            let _ = writeln!(out, "next: {name2} ({}, {:.2}x)", seconds(*t2), t2 / t);
+        }
+    }
+    out
+}
+
+/// The cost at which the ladder reaches `target`, interpolated log-log between the last rung
+/// above and the first rung at or below it (`None` if it never gets there).
+fn cost_at(
+    rungs: &[work_precision::Rung],
+    target: f64,
+    cost: impl Fn(&work_precision::Rung) -> f64,
+) -> Option<f64> {
+    let i = rungs.iter().position(|r| r.error <= target)?;
+    if i == 0 {
+        return Some(cost(&rungs[0]));
+    }
+    let (a, b) = (&rungs[i - 1], &rungs[i]);
+    let (ea, eb) = (a.error.log10(), b.error.log10());
+    let (ca, cb) = (cost(a).log10(), cost(b).log10());
+    if !(ea > eb) {
+        return Some(cost(b));
+    }
+    let s = (ea - target.log10()) / (ea - eb);
+    Some(10f64.powf(ca + s * (cb - ca)))
+}
+
+/// `--long`: the energy error of the long-run methods and of DOP853 at a matching cost.
+fn long(
+    scene: &'static dyn Scene,
+    origin: &str,
+    params: &Params,
+    args: &Args,
+    dir: &std::path::Path,
+) -> Result<()> {
+    let info = scene.info();
+    if args.long_steps < 1000 {
+        bail!("--long-steps {}: at least 1000 steps", args.long_steps);
+    }
+    let methods: Vec<String> = if args.integrators.is_empty() {
+        long_run_methods(info)
+            .into_iter()
+            .map(str::to_string)
+            .collect()
+    } else {
+        args.integrators
+            .iter()
+            .filter(|n| {
+                registry::find(n).is_ok_and(|m| !m.properties.adaptive && !m.properties.exact)
+            })
+            .cloned()
+            .collect()
+    };
+    if methods.is_empty() {
+        bail!(
+            "{}: no fixed-step symplectic, variational or Lie-group method to run (the scene \
+             takes {})",
+            info.name,
+            info.integrators.join(", ")
+        );
+    }
+    let h = info.default_step;
+    let t_end = h * args.long_steps as f64;
+    std::fs::create_dir_all(dir)
+        .with_context(|| format!("cannot create the output folder {}", dir.display()))?;
+    eprintln!(
+        "long run        {} ({origin}): {} steps of dt = {h} s, t in [0, {t_end}] s",
+        info.name, args.long_steps
+    );
+    let mut runs: Vec<(String, StepControl)> = methods
+        .iter()
+        .map(|m| (m.clone(), StepControl::Fixed(h)))
+        .collect();
+    // DOP853 at the cost of the scene's default method (or the first one), probed on 2000 steps.
+    let adaptive = ["dop853", "dp5"]
+        .into_iter()
+        .find(|a| info.integrators.contains(a));
+    let mut matched = String::new();
+    if let Some(a) = adaptive {
+        let probe = (2000.0 * h).min(t_end);
+        let base = if methods.iter().any(|m| m == info.default_integrator) {
+            info.default_integrator.to_string()
+        } else {
+            methods[0].clone()
+        };
+        let target =
+            work_precision::cost_per_second(scene, params, &base, StepControl::Fixed(h), probe)?;
+        let (tol, cost) = work_precision::matching_tolerance(scene, params, a, target, probe)?;
+        matched = format!(
+            "{a} at tol = {tol:e} costs {} per simulated second, {base} at dt = {h} s {}",
+            seconds(cost),
+            seconds(target)
+        );
+        eprintln!("matching cost   {matched}");
+        runs.push((a.to_string(), StepControl::Tolerance(tol)));
+    }
+    let results = work_precision::long_runs(scene, params, &runs, t_end, h, 240);
+    let mut csv = csv::Writer::from_writer(Vec::new());
+    csv.write_record(["integrator", "control", "t", "max_energy_rel_err"])?;
+    let mut lines = Vec::new();
+    let mut table = String::new();
+    let _ = writeln!(
+        table,
+        "{:<14} {:<18} {:>10} {:>12} {:>12} {:>10}",
+        "integrator", "step", "steps", "max rel err", "growth t^a", "wall time"
+    );
+    for r in &results {
+        report_long(r, &mut csv, &mut lines, &mut table)?;
+    }
+    write_atomically(&dir.join("long.csv"), &csv.into_inner()?)?;
+    let figure = plot::work_precision::long_figure(
+        format!(
+            "{}: relative energy error over {} steps",
+            info.name, args.long_steps
+        ),
+        format!(
+            "dt = {h} s; {}; maximum per logarithmic time bin{}",
+            parameter_words(params),
+            if matched.is_empty() {
+                String::new()
+            } else {
+                format!("; {matched}")
+            }
+        ),
+        lines,
+    );
+    for ext in ["png", "svg"] {
+        plot::save(&figure, &dir.join(format!("long.{ext}")))?;
+    }
+    print!("{table}");
+    eprintln!("output          {}", dir.display());
+    Ok(())
+}
+
+fn report_long(
+    r: &LongRun,
+    csv: &mut csv::Writer<Vec<u8>>,
+    lines: &mut Vec<Series>,
+    table: &mut String,
+) -> Result<()> {
+    let control = control_words(r.control);
+    let points = r.history.points();
+    for (t, e) in &points {
+        csv.write_record([
+            r.integrator.clone(),
+            control.clone(),
+            t.to_string(),
+            e.to_string(),
+        ])?;
+    }
+    let max = points.iter().map(|p| p.1).fold(0.0f64, f64::max);
+    match &r.result {
+        Ok(summary) => {
+            let _ = writeln!(
+                table,
+                "{:<14} {:<18} {:>10} {:>12.2e} {:>12} {:>10}",
+                r.integrator,
+                control,
+                summary.steps,
+                max,
+                r.history
+                    .growth_exponent(2.0)
+                    .map_or_else(|| "—".into(), |a| format!("{a:.2}")),
+                seconds(r.seconds)
+            );
+        }
+        Err(reason) => {
+            let _ = writeln!(
+                table,
+                "{:<14} {:<18} failed: {reason}",
+                r.integrator, control
+            );
+        }
+    }
+    lines.push(Series::line(
+        format!("{} ({control})", r.integrator),
+        points,
+    ));
+    Ok(())
+}

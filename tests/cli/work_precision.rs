@@ -1,0 +1,174 @@
+//! `tumble work-precision`: the output folder (CSV, plots, manifest), the summary table, long
+//! runs, and bad flags rejected before any run.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use tempfile::TempDir;
+
+fn tumble_in(dir: &Path, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_tumble"))
+        .current_dir(dir)
+        .args(args)
+        .output()
+        .expect("cannot run the tumble binary")
+}
+
+fn text(bytes: &[u8]) -> String {
+    String::from_utf8_lossy(bytes).into_owned()
+}
+
+#[test]
+fn work_precision_writes_csv_plots_and_manifest_with_a_ladder_per_integrator() {
+    let tmp = TempDir::new().unwrap();
+    let out = tumble_in(
+        tmp.path(),
+        &[
+            "work-precision",
+            "free-body",
+            "--t-end",
+            "1",
+            "--max-seconds",
+            "0.02",
+            "--integrators",
+            "split2,rk4,dop853",
+            "-o",
+            "wp",
+        ],
+    );
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let dir: PathBuf = tmp.path().join("wp");
+    for f in [
+        "work-precision.csv",
+        "work-precision.png",
+        "work-precision.svg",
+        "manifest.json",
+    ] {
+        assert!(dir.join(f).is_file(), "{f} missing");
+    }
+    let csv = std::fs::read_to_string(dir.join("work-precision.csv")).unwrap();
+    let mut reader = csv::Reader::from_reader(csv.as_bytes());
+    let header: Vec<String> = reader.headers().unwrap().iter().map(String::from).collect();
+    assert_eq!(
+        header,
+        [
+            "integrator",
+            "order",
+            "dt",
+            "tol",
+            "steps",
+            "evaluations",
+            "error",
+            "max_energy_rel_err",
+            "wall_time_s",
+            "repeats"
+        ]
+    );
+    let rows: Vec<csv::StringRecord> = csv::Reader::from_reader(csv.as_bytes())
+        .records()
+        .map(Result::unwrap)
+        .collect();
+    for name in ["split2", "rk4", "dop853"] {
+        let errors: Vec<f64> = rows
+            .iter()
+            .filter(|r| &r[0] == name)
+            .map(|r| r[6].parse().unwrap())
+            .collect();
+        assert!(errors.len() >= 3, "{name}: {errors:?}");
+        assert!(
+            errors.last().unwrap() < &(errors[0] / 100.0),
+            "{name}: {errors:?}"
+        );
+    }
+    let manifest: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("manifest.json")).unwrap()).unwrap();
+    assert_eq!(manifest["scene"], "free-body");
+    assert!(
+        manifest["reference"]["method"]
+            .as_str()
+            .unwrap()
+            .starts_with("exact")
+    );
+    assert!(manifest["reference"]["agreement"].as_f64().unwrap() < 1e-11);
+    let svg = std::fs::read_to_string(dir.join("work-precision.svg")).unwrap();
+    for label in [
+        "split2 (2)",
+        "rk4 (4)",
+        "dop853 (8)",
+        "wall time",
+        "error at the final time",
+    ] {
+        assert!(svg.contains(label), "{label} not in the plot");
+    }
+    let stdout = text(&out.stdout);
+    assert!(stdout.contains("observed order"), "{stdout}");
+    assert!(stdout.contains("fastest to an error of 1e-8"), "{stdout}");
+}
+
+#[test]
+fn long_mode_plots_the_energy_error_of_geometric_methods_and_a_matched_dop853() {
+    let tmp = TempDir::new().unwrap();
+    let out = tumble_in(
+        tmp.path(),
+        &[
+            "work-precision",
+            "free-body",
+            "--long",
+            "--long-steps",
+            "4000",
+            "--integrators",
+            "split2,lgvi",
+            "-o",
+            "long",
+        ],
+    );
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let dir = tmp.path().join("long");
+    for f in ["long.csv", "long.png", "long.svg"] {
+        assert!(dir.join(f).is_file(), "{f} missing");
+    }
+    let csv = std::fs::read_to_string(dir.join("long.csv")).unwrap();
+    for name in ["split2", "lgvi", "dop853"] {
+        assert!(
+            csv.lines().any(|l| l.starts_with(&format!("{name},"))),
+            "{name} missing"
+        );
+    }
+    assert!(text(&out.stderr).contains("matching cost"));
+}
+
+#[test]
+fn bad_flags_are_rejected_before_any_run() {
+    let tmp = TempDir::new().unwrap();
+    for (args, needle) in [
+        (
+            vec!["work-precision", "free-hoop", "--integrators", "split2"],
+            "`split2` cannot run scene `free-hoop`",
+        ),
+        (
+            vec!["work-precision", "free-body", "--max-seconds", "0"],
+            "--max-seconds 0",
+        ),
+        (
+            vec!["work-precision", "free-body", "--t-end", "-1"],
+            "--t-end -1",
+        ),
+        (vec!["work-precision", "no-such-scene"], "unknown scene"),
+        (
+            vec![
+                "work-precision",
+                "free-body",
+                "--long",
+                "--long-steps",
+                "10",
+            ],
+            "--long-steps 10",
+        ),
+    ] {
+        let out = tumble_in(tmp.path(), &args);
+        assert!(!out.status.success(), "{args:?} succeeded");
+        let err = text(&out.stderr);
+        assert!(err.contains(needle), "{args:?}: {err}");
+        assert!(!tmp.path().join("out").exists(), "{args:?} left output");
+    }
+}
