@@ -1,8 +1,8 @@
 //! Sweep throughput: points per second of `tumble_scenarios::sweep::run` with 1 and 2 worker
-//! threads, and the speedup.
+//! threads (the speedup is the ratio of the two throughputs criterion prints).
 //!
 //! The sweep is a slice of the built-in hoop-tilt map (`free-hoop`, gauss8, dt = 0.01, the
-//! map's parameters) over 48 bead angles at omega0 = 4 rad/s and a 2 s horizon: points of
+//! map's parameters) over 96 bead angles at omega0 = 4 rad/s and a 2 s horizon: points of
 //! nearly equal cost, so the speedup measures the engine (pool, channel, journal) rather than
 //! load imbalance. Each iteration runs the whole sweep into a fresh folder, journal included.
 //! Criterion reports the throughput in points/s (`elem/s`).
@@ -16,7 +16,7 @@ use std::hint::black_box;
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use tumble_scenarios::sweep::{self, RunConfig, SweepDefinition};
 
-/// The benchmark's sweep: the free hoop as in the tilt map, one spin, 48 bead angles.
+/// The benchmark's sweep: the free hoop as in the tilt map, one spin, 96 bead angles.
 const SWEEP: &str = r#"
 scene = "free-hoop"
 
@@ -35,7 +35,7 @@ t_end = 2.0
 [[axes]]
 parameter = "alpha0"
 range = [0.1, 3.0]
-count = 48
+count = 96
 
 [metrics]
 record = ["max_tilt", "final_tilt", "max_energy_rel_err"]
@@ -45,8 +45,8 @@ fn bench(c: &mut Criterion) {
     let def = SweepDefinition::parse(SWEEP, "bench", &[]).expect("the benchmark's sweep is valid");
     let points = def.points();
     let mut group = c.benchmark_group("sweep");
-    group.sample_size(20);
-    group.measurement_time(std::time::Duration::from_secs(15));
+    group.sample_size(10);
+    group.measurement_time(std::time::Duration::from_secs(20));
     group.throughput(Throughput::Elements(points));
     for threads in [1usize, 2] {
         group.bench_function(format!("threads-{threads}"), |b| {
