@@ -459,12 +459,13 @@ fn long(
         let target =
             work_precision::cost_per_second(scene, params, &base, StepControl::Fixed(h), probe)?;
         let (tol, cost) = work_precision::matching_tolerance(scene, params, a, target, probe)?;
-        matched = format!(
-            "{a} at tol = {tol:e} costs {} per simulated second, {base} at dt = {h} s {}",
+        eprintln!(
+            "matching cost   {a} at tol = {tol:e} costs {} per simulated second, {base} at \
+             dt = {h} s {} (tolerances 1e-4 … 1e-13 tried)",
             seconds(cost),
             seconds(target)
         );
-        eprintln!("matching cost   {matched}");
+        matched = format!("{a} tol = {tol:e} at {:.2}× the cost of {base}", cost / target);
         runs.push((a.to_string(), StepControl::Tolerance(tol)));
     }
     let results = work_precision::long_runs(scene, params, &runs, t_end, h, 240);
@@ -487,7 +488,7 @@ fn long(
             info.name, args.long_steps
         ),
         format!(
-            "dt = {h} s; {}; maximum per logarithmic time bin{}",
+            "dt = {h} s; {}{}",
             parameter_words(params),
             if matched.is_empty() {
                 String::new()
@@ -545,9 +546,10 @@ fn report_long(
             );
         }
     }
-    lines.push(Series::line(
-        format!("{} ({control})", r.integrator),
-        points,
-    ));
+    let label = match r.control {
+        StepControl::Fixed(_) => r.integrator.clone(),
+        StepControl::Tolerance(_) => format!("{} ({control})", r.integrator),
+    };
+    lines.push(Series::line(label, points));
     Ok(())
 }

@@ -48,7 +48,10 @@ pub fn figure(title: String, subtitle: String, curves: &[Curve]) -> StackedFigur
 
 /// The relative energy error's maximum per logarithmic time bin, one line per method.
 pub fn long_figure(title: String, subtitle: String, lines: Vec<Series>) -> StackedFigure {
-    let mut panel = Panel::new("time (s)", "relative energy error |E − E₀|/|E₀|")
+    let mut panel = Panel::new(
+        "time (s)",
+        "relative energy error |E − E₀|/|E₀| (maximum per log-time bin)",
+    )
         .with_x_scale(Scale::Log)
         .with_y_scale(Scale::Log)
         .with_legend(LegendCorner::UpperLeft);
