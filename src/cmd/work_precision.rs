@@ -465,7 +465,10 @@ fn long(
             seconds(cost),
             seconds(target)
         );
-        matched = format!("{a} tol = {tol:e} at {:.2}× the cost of {base}", cost / target);
+        matched = format!(
+            "{a} tol = {tol:e} at {:.2}× the cost of {base}",
+            cost / target
+        );
         runs.push((a.to_string(), StepControl::Tolerance(tol)));
     }
     let results = work_precision::long_runs(scene, params, &runs, t_end, h, 240);

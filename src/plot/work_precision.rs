@@ -52,9 +52,9 @@ pub fn long_figure(title: String, subtitle: String, lines: Vec<Series>) -> Stack
         "time (s)",
         "relative energy error |E − E₀|/|E₀| (maximum per log-time bin)",
     )
-        .with_x_scale(Scale::Log)
-        .with_y_scale(Scale::Log)
-        .with_legend(LegendCorner::UpperLeft);
+    .with_x_scale(Scale::Log)
+    .with_y_scale(Scale::Log)
+    .with_legend(LegendCorner::UpperLeft);
     for s in lines {
         panel = panel.with_series(s);
     }

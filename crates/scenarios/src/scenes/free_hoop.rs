@@ -33,11 +33,11 @@
 use std::f64::consts::FRAC_PI_2;
 
 use nalgebra::{Matrix3, SMatrix, SVector, Vector3};
+use tumble_integrators::Ode;
 use tumble_integrators::rigid::{
     CoupledLagrangian, CoupledLgvi, CoupledState, CoupledVectorField, KineticBlocks,
     LieVectorField, Scalar, coupled_energy, coupled_state_from_velocities, coupled_velocities,
 };
-use tumble_integrators::Ode;
 use tumble_kinematics::EulerConvention;
 use tumble_kinematics::so3::hat;
 
@@ -356,13 +356,9 @@ fn run_lgvi(
         },
         recorder,
     );
-    let report = resolved.driver()?.run_fixed(
-        &mut stepper,
-        model,
-        &mut state,
-        h,
-        &mut observer,
-    )?;
+    let report = resolved
+        .driver()?
+        .run_fixed(&mut stepper, model, &mut state, h, &mut observer)?;
     Ok(observer.summary(report.t, report.steps, report.steps))
 }
 
