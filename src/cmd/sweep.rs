@@ -409,7 +409,7 @@ fn fixed_parameters(def: &SweepDefinition) -> String {
 }
 
 /// A value with at most six significant digits, for labels.
-fn round_for_label(v: f64) -> String {
+pub(crate) fn round_for_label(v: f64) -> String {
     let s = format!("{v:.6}");
     let s = s.trim_end_matches('0').trim_end_matches('.');
     if s.len() > 10 {

@@ -18,7 +18,7 @@ use tumble_scenarios::work_precision::{
 use tumble_scenarios::{Params, Scene, StepControl};
 
 use super::simulate::{flag_words, load_scene, number};
-use super::sweep::write_atomically;
+use super::sweep::{round_for_label, write_atomically};
 use crate::plot;
 use crate::plot::work_precision::Curve;
 use crate::plot::xy::Series;
@@ -231,15 +231,9 @@ fn seconds(s: f64) -> String {
 fn parameter_words(params: &Params) -> String {
     params
         .iter()
-        .map(|(k, v)| format!("{k} = {}", round(v)))
+        .map(|(k, v)| format!("{k} = {}", round_for_label(v)))
         .collect::<Vec<_>>()
         .join(", ")
-}
-
-fn round(v: f64) -> String {
-    let s = format!("{v:.6}");
-    let s = s.trim_end_matches('0').trim_end_matches('.');
-    if s == "-0" { "0".into() } else { s.into() }
 }
 
 /// The CSV: one row per rung.
