@@ -685,8 +685,8 @@ mod tests {
         let svg = dir.path().join("wp.svg");
         super::super::save(&figure, &svg).unwrap();
         let text = std::fs::read_to_string(&svg).unwrap();
-        // Decade labels on both axes, and one circle per shown point: the point at x = 0
-        // cannot be shown on a log axis and is left out.
+        // Decade labels on both axes, and one circle per shown point (the point at x = 0
+        // cannot be shown on a log axis and is left out) plus one in each legend entry.
         let labels: Vec<&str> = text
             .split("</text>")
             .filter_map(|t| t.rsplit('>').next())
@@ -696,7 +696,37 @@ mod tests {
             labels.contains(&"1e-8") && labels.contains(&"1e4"),
             "{labels:?}"
         );
-        assert_eq!(text.matches("<circle").count(), 5 + 2);
+        assert_eq!(text.matches("<circle").count(), 5 + 2 + 2);
+    }
+
+    #[test]
+    fn series_past_the_palette_get_squares_then_triangles() {
+        // 15 series of two points: colours repeat after 7, so series 8–14 draw squares and
+        // dashes, series 15 triangles and dots; each marked series also marks its legend entry.
+        let mut panel = Panel::new("x", "y")
+            .with_x_scale(Scale::Log)
+            .with_y_scale(Scale::Log);
+        for i in 0..15 {
+            let y = 10f64.powi(-i);
+            panel = panel.with_series(Series::marked(
+                format!("s{i}"),
+                vec![(1.0, y), (10.0, y / 10.0)],
+                Mark::LineAndPoints,
+            ));
+        }
+        let figure = StackedFigure {
+            title: "styles".into(),
+            subtitle: String::new(),
+            panels: vec![panel],
+            width: 600,
+            panel_height: 700,
+        };
+        let dir = tempfile::tempdir().unwrap();
+        let svg = dir.path().join("styles.svg");
+        super::super::save(&figure, &svg).unwrap();
+        let text = std::fs::read_to_string(&svg).unwrap();
+        assert_eq!(text.matches("<circle").count(), 7 * 3);
+        assert_eq!(text.matches("<polygon").count(), 3);
     }
 
     #[test]
