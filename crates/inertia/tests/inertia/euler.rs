@@ -75,7 +75,7 @@ fn axis_aligned_body_reports_gimbal_lock_and_its_angles_still_diagonalize() {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(64))]
+    #![proptest_config(crate::common::proptest_config(64))]
 
     #[test]
     fn principal_euler_angles_diagonalize_a_body_in_any_orientation(r in rotation()) {

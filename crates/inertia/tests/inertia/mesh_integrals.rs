@@ -108,7 +108,7 @@ fn solids() -> Vec<TriangleMesh> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(64))]
+    #![proptest_config(crate::common::proptest_config(64))]
 
     /// Offsets up to 100 body sizes. (Further away, the translated coordinates themselves
     /// carry less than 1e-12 relative accuracy: their rounding error is ε |offset|.)

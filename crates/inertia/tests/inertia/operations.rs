@@ -22,7 +22,7 @@ fn cloud() -> impl Strategy<Value = Vec<PointMass>> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(128))]
+    #![proptest_config(crate::common::proptest_config(128))]
 
     #[test]
     fn parallel_axis_shift_matches_the_point_mass_sum_about_any_point(

@@ -34,7 +34,7 @@ fn realizable_moments() -> impl Strategy<Value = Vector3<f64>> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(256))]
+    #![proptest_config(crate::common::proptest_config(256))]
 
     #[test]
     fn principal_axes_diagonalize_to_1e_12_and_form_a_right_handed_frame(

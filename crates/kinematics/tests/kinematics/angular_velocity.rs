@@ -36,7 +36,7 @@ fn rates() -> impl Strategy<Value = Vector3<f64>> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(2000))]
+    #![proptest_config(crate::support::proptest_config(2000))]
 
     #[test]
     fn space_angular_velocity_is_vee_of_rdot_rt(conv in any_convention(), a in angles(), ad in rates()) {

@@ -49,7 +49,7 @@ fn lock_values(conv: EulerConvention) -> [f64; 2] {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(3000))]
+    #![proptest_config(crate::support::proptest_config(3000))]
 
     #[test]
     fn euler_round_trip_away_from_gimbal_lock((conv, a) in convention_and_regular_angles()) {

@@ -14,7 +14,7 @@ use tumble_kinematics::so3::{
 use crate::support::{max_abs_diff, rotation, rotation_vector, unit_vector};
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(2000))]
+    #![proptest_config(crate::support::proptest_config(2000))]
 
     #[test]
     fn hat_is_the_cross_product_and_vee_inverts_it(

@@ -8,7 +8,7 @@ use tumble_scenarios::EulerLagrange;
 use tumble_scenarios::scenes::top::HeavyTopEuler;
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(500))]
+    #![proptest_config(crate::support::proptest_config(500))]
 
     #[test]
     fn ad_heavy_top_reproduces_the_symmetric_top_equations(

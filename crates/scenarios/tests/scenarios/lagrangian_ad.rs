@@ -12,7 +12,7 @@ fn params() -> HoopParams {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(500))]
+    #![proptest_config(crate::support::proptest_config(500))]
 
     #[test]
     fn ad_driven_hoop_reproduces_the_textbook_equation(

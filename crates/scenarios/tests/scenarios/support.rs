@@ -40,3 +40,14 @@ pub fn crossing<const S: usize>(
         Action::Continue,
     )
 }
+
+/// Proptest settings: `default_cases` cases, or `PROPTEST_CASES` when set (to stress the bounds
+/// with many more random cases than CI runs: `PROPTEST_CASES=200000 cargo test ...`).
+/// `ProptestConfig::with_cases` alone would ignore the variable.
+pub fn proptest_config(default_cases: u32) -> proptest::prelude::ProptestConfig {
+    let cases = std::env::var("PROPTEST_CASES")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(default_cases);
+    proptest::prelude::ProptestConfig::with_cases(cases)
+}
