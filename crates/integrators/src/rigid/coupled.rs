@@ -49,9 +49,11 @@
 //! ```
 //!
 //! with `T_ξ, T_q, T_v` the partial derivatives of `T` at `(ξ, q̄, v)`. The `3 + N` equations are
-//! solved for `(w, d = q_{k+1} − q_k)` by Newton's method from the explicit guess `w = hΩ_k`,
-//! `d = h q̇_k`; the Jacobian is exact (hyper-dual numbers: one evaluation of `T` gives the
-//! residual's `∂/∂w`, one its `∂/∂d`), the linear system is solved by block elimination (a 3×3
+//! solved for `(w, d = q_{k+1} − q_k)` by a simplified Newton method from the explicit guess
+//! `w = hΩ_k`, `d = h q̇_k`: the Jacobian is exact at the first iterate (hyper-dual numbers: one
+//! evaluation of `T` gives the residual's `∂/∂w`, one its `∂/∂d`) and is reused — later
+//! iterations evaluate only the residual, with first-order dual numbers for `T_q` — until an
+//! iteration shrinks the increment less than fourfold, which re-evaluates it; the linear system is solved by block elimination (a 3×3
 //! inverse and an `N×N` LU with partial pivoting, all on the stack). Iteration stops when the
 //! increment is at round-off or stops decreasing; otherwise [`Error::NoConvergence`]. Solving for
 //! the increment `d` rather than `q_{k+1}` keeps `v = d/h` free of cancellation when `q` is large
@@ -428,6 +430,27 @@ impl<const N: usize> StepData<N> {
     }
 }
 
+impl<const N: usize> StepData<N> {
+    /// The residuals `(E_R, E_q)` alone at `(w, d)` (first-order dual numbers for `T_q`): the
+    /// iterations after the first reuse the Jacobian (simplified Newton).
+    fn residual<L: CoupledLagrangian<N> + ?Sized>(
+        &self,
+        model: &L,
+        w: &Vector3<f64>,
+        d: &SVector<f64, N>,
+    ) -> (Vector3<f64>, SVector<f64, N>) {
+        let h = self.h;
+        let inv_h = 1.0 / h;
+        let qbar = SVector::<Grad<N>, N>::from_fn(|i, _| grad_var::<N>(self.q0[i] + 0.5 * d[i], i));
+        let v = (d * inv_h).map(Grad::<N>::from);
+        let blocks = model.kinetic(&qbar);
+        let (t, t_xi, t_v) = kinetic_terms(&blocks, &(w * inv_h).map(Grad::<N>::from), &v);
+        let residual_r = self.pi - a_right(w) * t_xi.map(|x| x.re);
+        let residual_q = self.p + grad_of(&t) * (0.5 * h) - t_v.map(|x| x.re);
+        (residual_r, residual_q)
+    }
+}
+
 impl<const N: usize, L: CoupledLagrangian<N> + ?Sized> Stepper<L> for CoupledLgvi<N> {
     type State = CoupledState<N>;
 
@@ -476,9 +499,21 @@ impl<const N: usize, L: CoupledLagrangian<N> + ?Sized> Stepper<L> for CoupledLgv
         let mut previous = f64::INFINITY;
         let mut converged = false;
         let mut iterations = 0;
+        // Newton's Jacobian is evaluated at the first iterate and again only when an iteration
+        // fails to shrink the increment fourfold (simplified Newton: the explicit guess is
+        // within O(h²) of the solution, so the reused Jacobian contracts fast); the residuals
+        // alone cost a fraction of a Jacobian.
+        let mut jacobian = None;
         while iterations < self.max_iterations {
             iterations += 1;
-            let (er, eq, a, b, c, dm) = data.newton(model, &w, &d);
+            let ((er, eq), (a, b, c, dm)) = match jacobian {
+                Some(blocks) => (data.residual(model, &w, &d), blocks),
+                None => {
+                    let (er, eq, a, b, c, dm) = data.newton(model, &w, &d);
+                    jacobian = Some((a, b, c, dm));
+                    ((er, eq), (a, b, c, dm))
+                }
+            };
             let Some((dw, dd)) = solve_blocks(&a, &b, &c, &dm, &(-er), &(-eq)) else {
                 return Err(Error::SingularMatrix {
                     t,
@@ -500,6 +535,9 @@ impl<const N: usize, L: CoupledLagrangian<N> + ?Sized> Stepper<L> for CoupledLgv
             if size <= 4.0 * f64::EPSILON {
                 converged = true;
                 break;
+            }
+            if size > 0.25 * previous {
+                jacobian = None;
             }
             previous = size;
         }

