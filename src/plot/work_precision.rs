@@ -35,7 +35,7 @@ pub fn figure(title: String, subtitle: String, curves: &[Curve]) -> StackedFigur
         title,
         subtitle,
         panels: vec![
-            panel("wall time (s, median of repeats)", |r| r.0),
+            panel("wall time per run (s)", |r| r.0),
             panel(
                 "right-hand-side evaluations (steps for splitting methods)",
                 |r| r.1,

@@ -206,9 +206,10 @@ pub struct Rung {
     pub error: f64,
     /// Largest relative energy error over every step.
     pub max_energy_rel_err: f64,
-    /// Median wall time (s) of `repeats` runs observing only the ends.
+    /// Wall time (s) of one run observing only the ends: the median over samples of the mean
+    /// of back-to-back runs (each sample at least 5 ms).
     pub seconds: f64,
-    /// Timed repeats.
+    /// Timed runs in all.
     pub repeats: usize,
 }
 
@@ -334,7 +335,7 @@ fn median(values: &mut [f64]) -> f64 {
 }
 
 /// Runs one rung: a monitored run (error, energy, evaluations), then timed runs that observe
-/// only the ends (3 repeats, more for short runs: 7 below 50 ms, 15 below 1 ms).
+/// only the ends (5 samples of at least 5 ms of back-to-back runs; 3 for runs over 0.1 s).
 ///
 /// # Errors
 /// The run's error.
@@ -354,26 +355,27 @@ pub fn rung(
         &options(integrator, control, t_end, Observe::EveryStep),
     )?;
     let monitored = start.elapsed().as_secs_f64();
-    let repeats = if monitored < 1e-3 {
-        15
-    } else if monitored < 0.05 {
-        7
-    } else {
-        3
-    };
+    // Timing: samples of back-to-back runs lasting at least 5 ms each (a single µs-scale run is
+    // at the mercy of a timer tick or a neighbour's burst), the median of 5 samples (3 for runs
+    // over 0.1 s).
+    let batch = (5e-3 / monitored.max(1e-9)).ceil().clamp(1.0, 1e5) as usize;
+    let samples = if monitored < 0.1 { 5 } else { 3 };
     let quiet = options(integrator, control, t_end, Observe::Ends);
-    let mut times = Vec::with_capacity(repeats);
-    for _ in 0..repeats {
+    let mut times = Vec::with_capacity(samples);
+    for _ in 0..samples {
         let start = Instant::now();
-        let (timed, _) = final_state(scene, params, &quiet)?;
-        times.push(start.elapsed().as_secs_f64());
-        // Observing only the ends must not change the run (the quaternion's sign, chosen
-        // continuous along the observed states, may differ).
-        debug_assert!(
-            state_error(info, &timed, &state) == 0.0,
-            "observing only the ends changed the run: {timed:?} against {state:?}"
-        );
+        for _ in 0..batch {
+            let (timed, _) = final_state(scene, params, &quiet)?;
+            // Observing only the ends must not change the run (the quaternion's sign, chosen
+            // continuous along the observed states, may differ).
+            debug_assert!(
+                state_error(info, &timed, &state) == 0.0,
+                "observing only the ends changed the run: {timed:?} against {state:?}"
+            );
+        }
+        times.push(start.elapsed().as_secs_f64() / batch as f64);
     }
+    let repeats = samples * batch;
     Ok(Rung {
         integrator: integrator.to_string(),
         control,
