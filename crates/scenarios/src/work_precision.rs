@@ -29,6 +29,7 @@
 use std::time::Instant;
 
 use tumble_integrators::registry::{self, Order};
+use tumble_integrators::verification::fit_power_law;
 
 use crate::error::SceneError;
 use crate::params::Params;
@@ -529,12 +530,12 @@ pub fn ladder(
 /// in `[lo, hi]` (`None` with fewer than 3 such rungs).
 #[must_use]
 pub fn fitted_slope(rungs: &[Rung], x: impl Fn(&Rung) -> f64, lo: f64, hi: f64) -> Option<f64> {
-    let pts: Vec<(f64, f64)> = rungs
-        .iter()
-        .filter(|r| r.error >= lo && r.error <= hi)
-        .map(|r| (x(r).log10(), r.error.log10()))
-        .collect();
-    slope(&pts)
+    power_law(
+        rungs
+            .iter()
+            .filter(|r| r.error >= lo && r.error <= hi)
+            .map(|r| (x(r), r.error)),
+    )
 }
 
 /// The relative energy error of a long run, reduced to its maximum over logarithmically
@@ -588,13 +589,11 @@ impl EnergyHistory {
     #[must_use]
     pub fn growth_exponent(&self, decades: f64) -> Option<f64> {
         let t_end = *self.edges.last()?;
-        let pts: Vec<(f64, f64)> = self
-            .points()
-            .into_iter()
-            .filter(|(t, e)| *t >= t_end / 10f64.powf(decades) && *e > 0.0)
-            .map(|(t, e)| (t.log10(), e.log10()))
-            .collect();
-        slope(&pts)
+        power_law(
+            self.points()
+                .into_iter()
+                .filter(|(t, e)| *t >= t_end / 10f64.powf(decades) && *e > 0.0),
+        )
     }
 }
 
@@ -611,19 +610,15 @@ impl Recorder for EnergyHistory {
     }
 }
 
-/// Least-squares slope of `y` against `x` (`None` below 3 points or when all `x` are equal).
-fn slope(pts: &[(f64, f64)]) -> Option<f64> {
-    if pts.len() < 3 {
+/// The exponent of `y ≈ C xᵅ` through `points` by the verification harness's least-squares fit
+/// ([`tumble_integrators::verification::fit_power_law`]); `None` below 3 points or when all `x`
+/// are equal.
+fn power_law(points: impl Iterator<Item = (f64, f64)>) -> Option<f64> {
+    let (xs, ys): (Vec<f64>, Vec<f64>) = points.unzip();
+    if xs.len() < 3 {
         return None;
     }
-    let n = pts.len() as f64;
-    let (mx, my) = pts
-        .iter()
-        .fold((0.0, 0.0), |(a, b), (x, y)| (a + x / n, b + y / n));
-    let (sxy, sxx) = pts.iter().fold((0.0, 0.0), |(a, b), (x, y)| {
-        (a + (x - mx) * (y - my), b + (x - mx) * (x - mx))
-    });
-    (sxx > 0.0).then(|| sxy / sxx)
+    Some(fit_power_law(&xs, &ys)).filter(|a| a.is_finite())
 }
 
 /// One long run: its method, step control, summary and energy history.
