@@ -431,23 +431,35 @@ impl<const N: usize> StepData<N> {
 }
 
 impl<const N: usize> StepData<N> {
-    /// The residuals `(E_R, E_q)` alone at `(w, d)` (first-order dual numbers for `T_q`): the
-    /// iterations after the first reuse the Jacobian (simplified Newton).
+    /// `T`'s partial derivatives `(T_ξ, T_v, T_q)` at `ξ = w/h`, `q̄ = q_k + d/2`, `v = d/h`
+    /// (first-order dual numbers for `T_q`): what the residuals and the momenta at `k + 1` need.
+    fn partials<L: CoupledLagrangian<N> + ?Sized>(
+        &self,
+        model: &L,
+        w: &Vector3<f64>,
+        d: &SVector<f64, N>,
+    ) -> (Vector3<f64>, SVector<f64, N>, SVector<f64, N>) {
+        let h = self.h;
+        let qbar = SVector::<Grad<N>, N>::from_fn(|i, _| grad_var::<N>(self.q0[i] + 0.5 * d[i], i));
+        let v = (d / h).map(Grad::<N>::from);
+        let blocks = model.kinetic(&qbar);
+        let (t, t_xi, t_v) = kinetic_terms(&blocks, &(w / h).map(Grad::<N>::from), &v);
+        (t_xi.map(|x| x.re), t_v.map(|x| x.re), grad_of(&t))
+    }
+
+    /// The residuals `(E_R, E_q)` alone at `(w, d)`: the iterations after the first reuse the
+    /// Jacobian (simplified Newton).
     fn residual<L: CoupledLagrangian<N> + ?Sized>(
         &self,
         model: &L,
         w: &Vector3<f64>,
         d: &SVector<f64, N>,
     ) -> (Vector3<f64>, SVector<f64, N>) {
-        let h = self.h;
-        let inv_h = 1.0 / h;
-        let qbar = SVector::<Grad<N>, N>::from_fn(|i, _| grad_var::<N>(self.q0[i] + 0.5 * d[i], i));
-        let v = (d * inv_h).map(Grad::<N>::from);
-        let blocks = model.kinetic(&qbar);
-        let (t, t_xi, t_v) = kinetic_terms(&blocks, &(w * inv_h).map(Grad::<N>::from), &v);
-        let residual_r = self.pi - a_right(w) * t_xi.map(|x| x.re);
-        let residual_q = self.p + grad_of(&t) * (0.5 * h) - t_v.map(|x| x.re);
-        (residual_r, residual_q)
+        let (t_xi, t_v, t_q) = self.partials(model, w, d);
+        (
+            self.pi - a_right(w) * t_xi,
+            self.p + t_q * (0.5 * self.h) - t_v,
+        )
     }
 }
 
@@ -557,13 +569,7 @@ impl<const N: usize, L: CoupledLagrangian<N> + ?Sized> Stepper<L> for CoupledLgv
         let mut r1 = r0;
         crate::rigid::state::compensated_add_all(&mut r1, &(r0 * g), &mut self.carry_rotation);
         // Momenta at k + 1: T's partial derivatives at the solution (T_q by AD).
-        let qbar = SVector::<Grad<N>, N>::from_fn(|i, _| grad_var::<N>(q0[i] + 0.5 * d[i], i));
-        let v = (d / h).map(Grad::<N>::from);
-        let blocks = model.kinetic(&qbar);
-        let (tk, t_xi, t_v) = kinetic_terms(&blocks, &(w / h).map(Grad::<N>::from), &v);
-        let t_xi = t_xi.map(|x| x.re);
-        let t_v = t_v.map(|x| x.re);
-        let t_q = grad_of(&tk);
+        let (t_xi, t_v, t_q) = data.partials(model, &w, &d);
         state.momentum =
             a_right(&w).transpose() * t_xi + coupled_torque(model, &r1, &q1) * (0.5 * h);
         state.p = t_v + t_q * (0.5 * h) - coupled_potential_gradient(model, &r1, &q1) * (0.5 * h);
