@@ -3,5 +3,6 @@
 mod inertia;
 mod scenes;
 mod simulate;
+mod support;
 mod sweep;
 mod work_precision;

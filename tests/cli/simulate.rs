@@ -4,36 +4,14 @@
 //! left behind.
 
 use std::f64::consts::PI;
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::path::Path;
 
 use tempfile::TempDir;
+
+use crate::support::{root, stderr, succeeds, tumble_in};
 use tumble_scenarios::scene::Rows;
 use tumble_scenarios::scenes::find;
 use tumble_scenarios::{RunOptions, StepControl};
-
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-}
-
-/// Runs `tumble` in `dir`.
-fn tumble_in(dir: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_tumble"))
-        .current_dir(dir)
-        .args(args)
-        .output()
-        .expect("cannot run the tumble binary")
-}
-
-fn stderr(out: &Output) -> String {
-    String::from_utf8_lossy(&out.stderr).into_owned()
-}
-
-fn succeeds(dir: &Path, args: &[&str]) -> Output {
-    let out = tumble_in(dir, args);
-    assert!(out.status.success(), "{args:?} failed: {}", stderr(&out));
-    out
-}
 
 /// Parses CSV text: the header and the rows as numbers.
 fn parse_csv(text: &str) -> (Vec<String>, Vec<Vec<f64>>) {

@@ -3,33 +3,13 @@
 //! files refused before any work; the output folder's files.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output, Stdio};
+use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
 use tempfile::TempDir;
+
+use crate::support::{root, stderr, succeeds, tumble_in};
 use tumble_scenarios::sweep::SweepDefinition;
-
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-}
-
-fn tumble_in(dir: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_tumble"))
-        .current_dir(dir)
-        .args(args)
-        .output()
-        .expect("cannot run the tumble binary")
-}
-
-fn stderr(out: &Output) -> String {
-    String::from_utf8_lossy(&out.stderr).into_owned()
-}
-
-fn succeeds(dir: &Path, args: &[&str]) -> Output {
-    let out = tumble_in(dir, args);
-    assert!(out.status.success(), "{args:?} failed: {}", stderr(&out));
-    out
-}
 
 fn read(path: &Path) -> String {
     std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))

@@ -1,18 +1,11 @@
 //! `tumble work-precision`: the output folder (CSV, plots, manifest), the summary table, long
 //! runs, and bad flags rejected before any run.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::path::PathBuf;
 
 use tempfile::TempDir;
 
-fn tumble_in(dir: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_tumble"))
-        .current_dir(dir)
-        .args(args)
-        .output()
-        .expect("cannot run the tumble binary")
-}
+use crate::support::tumble_in;
 
 fn text(bytes: &[u8]) -> String {
     String::from_utf8_lossy(bytes).into_owned()
