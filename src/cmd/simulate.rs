@@ -32,19 +32,9 @@ use crate::plot;
 /// Flags of `tumble simulate`.
 #[derive(clap::Args, Debug)]
 pub struct Args {
-    /// A built-in scene (`tumble scenes` lists them) or a TOML scene file (taken as a file if
-    /// the argument ends in `.toml` or names an existing file).
-    #[arg(value_name = "SCENE")]
-    pub scene: String,
-    /// Set a parameter of the scene, over its default or the scene file's value; repeat for
-    /// several. VALUE is a number or an angle expression such as `pi/2`, `-3pi/4`, `2*pi`.
-    #[arg(
-        long = "set",
-        value_name = "KEY=VALUE",
-        allow_hyphen_values = true,
-        action = clap::ArgAction::Append
-    )]
-    pub set: Vec<String>,
+    /// The scene and its parameter overrides.
+    #[command(flatten)]
+    pub target: SceneArgs,
     /// Integrator (from `tumble integrators`) among those the scene lists as applicable.
     #[arg(long, value_name = "NAME")]
     pub integrator: Option<String>,
@@ -111,12 +101,31 @@ fn parse_set(raw: &str) -> Result<(&str, f64)> {
     Ok((key, x))
 }
 
-/// A scene argument (built-in name or TOML file) and `--set` overrides: the scene, where it
-/// came from (`builtin` or the file's path), its parameters, and the file's run options.
+/// A scene and its parameter overrides, as `simulate` and `work-precision` take them.
+#[derive(clap::Args, Debug)]
+pub struct SceneArgs {
+    /// A built-in scene (`tumble scenes` lists them) or a TOML scene file (taken as a file if
+    /// the argument ends in `.toml` or names an existing file).
+    #[arg(value_name = "SCENE")]
+    pub scene: String,
+    /// Set a parameter of the scene, over its default or the scene file's value; repeat for
+    /// several. VALUE is a number or an angle expression such as `pi/2`, `-3pi/4`, `2*pi`.
+    #[arg(
+        long = "set",
+        value_name = "KEY=VALUE",
+        allow_hyphen_values = true,
+        action = clap::ArgAction::Append
+    )]
+    pub set: Vec<String>,
+}
+
+/// The scene of `target` (built-in name or TOML file) with its `--set` overrides: the scene,
+/// where it came from (`builtin` or the file's path), its parameters, and the file's run
+/// options.
 pub(crate) fn load_scene(
-    arg: &str,
-    set: &[String],
+    target: &SceneArgs,
 ) -> Result<(&'static dyn Scene, String, Params, RunOptions)> {
+    let (arg, set) = (target.scene.as_str(), target.set.as_slice());
     let (scene, origin, mut params, options) = if is_file(arg) {
         let file = SceneFile::load(Path::new(arg))?;
         (file.scene, file.origin, file.params, file.run)
@@ -142,7 +151,7 @@ pub(crate) fn load_scene(
 
 /// Stage one: the scene, parameters and options from the flags, validated.
 fn setup(args: &Args) -> Result<Setup> {
-    let (scene, origin, params, mut options) = load_scene(&args.scene, &args.set)?;
+    let (scene, origin, params, mut options) = load_scene(&args.target)?;
     if let Some(name) = &args.integrator {
         options.integrator = Some(name.clone());
     }

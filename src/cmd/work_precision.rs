@@ -17,7 +17,7 @@ use tumble_scenarios::work_precision::{
 };
 use tumble_scenarios::{Params, Scene, StepControl};
 
-use super::simulate::{flag_words, load_scene, number};
+use super::simulate::{SceneArgs, flag_words, load_scene, number};
 use super::sweep::{round_for_label, write_atomically};
 use crate::plot;
 use crate::plot::work_precision::Curve;
@@ -26,17 +26,9 @@ use crate::plot::xy::Series;
 /// Flags of `tumble work-precision`.
 #[derive(clap::Args, Debug)]
 pub struct Args {
-    /// A built-in scene (`tumble scenes`) or a TOML scene file.
-    #[arg(value_name = "SCENE")]
-    pub scene: String,
-    /// Set a parameter of the scene (repeat for several), as for `tumble simulate`.
-    #[arg(
-        long = "set",
-        value_name = "KEY=VALUE",
-        allow_hyphen_values = true,
-        action = clap::ArgAction::Append
-    )]
-    pub set: Vec<String>,
+    /// The scene and its parameter overrides.
+    #[command(flatten)]
+    pub target: SceneArgs,
     /// Integrators to compare, comma-separated (default: every one the scene takes; with
     /// `--long`, its symplectic, variational and Lie-group ones).
     #[arg(long, value_name = "A,B,...", value_delimiter = ',')]
@@ -64,7 +56,7 @@ pub struct Args {
 /// # Errors
 /// Invalid flags (before any run), a failing reference, an unwritable output folder.
 pub fn run(args: &Args) -> Result<()> {
-    let (scene, origin, params, file_options) = load_scene(&args.scene, &args.set)?;
+    let (scene, origin, params, file_options) = load_scene(&args.target)?;
     let info = scene.info();
     for name in &args.integrators {
         if !info.integrators.contains(&name.as_str()) {
