@@ -36,20 +36,15 @@ use crate::params::Params;
 use crate::scene::{Observe, Recorder, RunOptions, RunSummary, Scene, SceneInfo, StepControl};
 use tumble_integrators::Flow;
 
-/// Keeps the first and the last row of a run (nothing in between).
+/// Keeps the last row of a run (the final state), overwriting it in place.
 #[derive(Debug, Clone, Default)]
-pub struct FirstAndLast {
-    /// The first row (the initial state).
-    pub first: Vec<f64>,
-    /// The last row (the final state).
+pub struct LastRow {
+    /// The last row handed over.
     pub last: Vec<f64>,
 }
 
-impl Recorder for FirstAndLast {
+impl Recorder for LastRow {
     fn row(&mut self, values: &[f64]) -> Flow {
-        if self.first.is_empty() {
-            self.first.extend_from_slice(values);
-        }
         if self.last.len() == values.len() {
             self.last.copy_from_slice(values);
         } else {
@@ -79,7 +74,7 @@ pub fn final_state(
     options: &RunOptions,
 ) -> Result<(FinalState, RunSummary), SceneError> {
     let info = scene.info();
-    let mut rec = FirstAndLast::default();
+    let mut rec = LastRow::default();
     let summary = scene.simulate(params, options, &mut rec)?;
     let n = state_len(info);
     let values = rec.last.get(1..=n).map(<[f64]>::to_vec).unwrap_or_default();
@@ -465,14 +460,17 @@ pub fn ladder(
     let mut n0 = (t_end / info.default_step / 8.0).round().max(1.0);
     let mut k = 0;
     if !adaptive {
-        // Coarsen until the error exceeds max_error (or the run fails, or one step is left).
-        loop {
-            match run(control_at(0, n0), &mut out) {
-                Some(r) if r.error <= config.max_error && n0 > 1.0 => n0 = (n0 / 4.0).ceil(),
-                _ => break,
-            }
+        // Coarsen until the error exceeds max_error (or the run fails, or one step is left):
+        // untimed probes of the error only; the ladder proper starts at the last of them.
+        let probe_error = |n: f64| {
+            let quiet = options(integrator, control_at(0, n), t_end, Observe::Ends);
+            final_state(scene, params, &quiet)
+                .ok()
+                .map(|(s, _)| state_error(info, &s, reference))
+        };
+        while n0 > 1.0 && probe_error(n0).is_some_and(|e| e <= config.max_error) {
+            n0 = (n0 / 4.0).ceil();
         }
-        out.failures.clear();
     }
     let mut best = f64::INFINITY;
     let mut stalled = 0;
