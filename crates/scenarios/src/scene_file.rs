@@ -255,8 +255,8 @@ impl fmt::Debug for SceneFile {
     }
 }
 
-/// Describes a TOML value for an error message.
-fn describe(value: &toml::Value) -> String {
+/// Describes a TOML value for an error message (scene and sweep files).
+pub(crate) fn describe(value: &toml::Value) -> String {
     match value {
         toml::Value::String(s) => format!("a string {s:?}"),
         toml::Value::Integer(i) => format!("the integer {i}"),
@@ -268,8 +268,9 @@ fn describe(value: &toml::Value) -> String {
     }
 }
 
-/// A line of `text` with a caret under `column`, indented, or empty when unplaced.
-fn excerpt(text: &str, at: &Location) -> String {
+/// A line of `text` with a caret under `column`, indented, or empty when unplaced (scene and
+/// sweep files).
+pub(crate) fn excerpt(text: &str, at: &Location) -> String {
     let Some((line, column)) = at.position else {
         return String::new();
     };

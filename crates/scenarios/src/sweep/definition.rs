@@ -18,7 +18,7 @@ use super::metrics::Metric;
 use crate::error::SceneError;
 use crate::params::Params;
 use crate::scene::{RunOptions, Scene, StepControl};
-use crate::scene_file::Location;
+use crate::scene_file::{Location, describe, excerpt};
 use crate::scenes;
 
 /// Where a value of a sweep definition came from.
@@ -692,33 +692,6 @@ impl Src<Num> {
             found,
         }
     }
-}
-
-/// Describes a TOML value for a message.
-fn describe(value: &toml::Value) -> String {
-    match value {
-        toml::Value::String(s) => format!("a string {s:?}"),
-        toml::Value::Integer(i) => format!("the integer {i}"),
-        toml::Value::Float(x) => format!("the float {x}"),
-        toml::Value::Boolean(b) => format!("the boolean {b}"),
-        toml::Value::Datetime(d) => format!("the date-time {d}"),
-        toml::Value::Array(_) => "an array".to_string(),
-        toml::Value::Table(_) => "a table".to_string(),
-    }
-}
-
-/// The offending line with a caret under the column, indented (empty when unplaced).
-fn excerpt(text: &str, at: &Location) -> String {
-    let Some((line, column)) = at.position else {
-        return String::new();
-    };
-    let Some(source) = text.lines().nth(line - 1) else {
-        return String::new();
-    };
-    format!(
-        "\n    {line:>4} | {source}\n         | {}^",
-        " ".repeat(column.saturating_sub(1))
-    )
 }
 
 #[derive(Debug, Clone)]
