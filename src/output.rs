@@ -1,74 +1,63 @@
-//! Output files that appear whole or not at all.
-//!
-//! Every file the command line writes (CSV, plots) is first written to a temporary file in the
-//! destination's own directory and renamed over the destination only once it is complete, so an
-//! interrupted or failed run never leaves a truncated file that looks finished. A temporary file
-//! that is not kept is removed when it is dropped (also on an early return with `?`).
+//! Output files: every path the command line writes goes through a
+//! [`tumble_output::Destination`] — regular files appear whole or not at all, character
+//! devices and FIFOs are streamed to, anything else is refused before any work.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
-use anyhow::{Context, Result, bail};
-use tempfile::{Builder, NamedTempFile, TempPath};
+use anyhow::Result;
+pub use tumble_output::{Destination, Mode};
 
-/// The directory a path lives in (`.` for a bare file name).
-#[must_use]
-pub fn directory_of(path: &Path) -> PathBuf {
-    match path.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
-        _ => PathBuf::from("."),
-    }
-}
-
-/// A new, empty temporary file beside `path` (same directory, so the final rename is atomic),
-/// named `.NAME.XXXXXX.tmp.EXT` with `path`'s extension, created with the usual permissions
-/// (`0666` less the umask, as a plain create would; tempfile's default is `0600`).
+/// Checks, before any work, that every path in `paths` can be written, and that no two of them
+/// name the same file (after following links). `paths` pairs each path with the flag or role
+/// that named it, for messages.
 ///
 /// # Errors
-/// If the directory does not exist or is not writable.
-pub fn temp_file_beside(path: &Path) -> Result<NamedTempFile> {
-    let dir = directory_of(path);
-    if !dir.is_dir() {
-        bail!(
-            "{}: the directory {} does not exist",
-            path.display(),
+/// The first path that cannot be written, or two roles writing one file.
+pub fn check_all<'a>(
+    paths: impl IntoIterator<Item = (&'a str, &'a Path)>,
+) -> Result<Vec<Destination>> {
+    let mut seen: Vec<(&str, Destination)> = Vec::new();
+    for (role, path) in paths {
+        let dest = Destination::check(path).map_err(|e| anyhow::anyhow!("{role} {e}"))?;
+        if matches!(dest.mode(), Mode::Atomic { .. })
+            && let Some((other, _)) = seen.iter().find(|(_, d)| d.file() == dest.file())
+        {
+            anyhow::bail!(
+                "{role} {}: the same file as {other}; give them different paths",
+                path.display()
+            );
+        }
+        seen.push((role, dest));
+    }
+    Ok(seen.into_iter().map(|(_, d)| d).collect())
+}
+
+/// Writes `bytes` to `path` whole or not at all (streamed if `path` is a device or FIFO).
+///
+/// # Errors
+/// If `path` cannot be written.
+pub fn write_whole(path: &Path, bytes: &[u8]) -> Result<()> {
+    Destination::check(path)?.write_all(bytes)?;
+    Ok(())
+}
+
+/// Checks, before any work, the files a command will write into the folder `dir`: `dir` is a
+/// directory or does not exist yet, and each of `names` in it can be written (a directory or a
+/// socket where a result goes is refused now, not after the run).
+///
+/// # Errors
+/// `dir` exists and is not a directory, or one of the files cannot be written.
+pub fn check_folder(dir: &Path, names: &[String]) -> Result<()> {
+    if dir.exists() && !dir.is_dir() {
+        anyhow::bail!(
+            "{}: is not a directory; give the output folder's path",
             dir.display()
         );
     }
-    let name = path
-        .file_name()
-        .map_or_else(|| "output".into(), |n| n.to_string_lossy().into_owned());
-    let suffix = match path.extension() {
-        Some(ext) => format!(".tmp.{}", ext.to_string_lossy()),
-        None => ".tmp".to_string(),
-    };
-    let prefix = format!(".{name}.");
-    let mut builder = Builder::new();
-    builder.prefix(&prefix).suffix(&suffix);
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::PermissionsExt;
-        builder.permissions(std::fs::Permissions::from_mode(0o666));
+    if dir.is_dir() {
+        for name in names {
+            Destination::check(&dir.join(name))?;
+        }
     }
-    builder
-        .tempfile_in(&dir)
-        .with_context(|| format!("{}: cannot create a file beside it", path.display()))
-}
-
-/// A temporary path beside `path`, for writers that open the file themselves (the plot
-/// backends); see [`temp_file_beside`].
-///
-/// # Errors
-/// As [`temp_file_beside`].
-pub fn temp_path_beside(path: &Path) -> Result<TempPath> {
-    Ok(temp_file_beside(path)?.into_temp_path())
-}
-
-/// Renames a finished temporary file over `path`.
-///
-/// # Errors
-/// If the rename fails; the temporary file is then removed.
-pub fn commit(temp: TempPath, path: &Path) -> Result<()> {
-    temp.persist(path)
-        .map_err(|e| e.error)
-        .with_context(|| format!("cannot write {}", path.display()))
+    Ok(())
 }

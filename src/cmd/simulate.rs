@@ -372,24 +372,30 @@ pub fn run(args: &Args) -> Result<()> {
     let info = setup.scene.info();
     if let Some(path) = &args.plot {
         plot::Format::from_path(path)?;
-        let dir = output::directory_of(path);
-        if !dir.is_dir() {
-            bail!(
-                "--plot {}: the directory {} does not exist",
-                path.display(),
-                dir.display()
-            );
-        }
     }
-    let to_file = args.output.as_ref().filter(|p| p.as_os_str() != "-");
+    // Every output is classified before the first step: a directory or a socket is refused
+    // now, a device or FIFO is streamed to, and -o and --plot may not name one file.
+    let outputs: Vec<(&str, &Path)> = [
+        ("-o", args.output.as_deref()),
+        ("--plot", args.plot.as_deref()),
+    ]
+    .into_iter()
+    .filter_map(|(role, p)| p.map(|p| (role, p)))
+    .collect();
+    let mut destinations = output::check_all(outputs)?.into_iter();
+    let csv_dest = match &args.output {
+        Some(_) => destinations.next(),
+        None => None,
+    };
+    let plot_dest = destinations.next();
     let start = Instant::now();
-    let (outcome, written) = match to_file {
-        Some(path) => {
-            let mut temp = output::temp_file_beside(path).context("-o")?;
-            let outcome = run_into(&setup, temp.as_file_mut(), args.plot.is_some())?;
-            (outcome, Some((path, temp.into_temp_path())))
+    let (outcome, written) = match csv_dest {
+        Some(dest) if *dest.mode() != output::Mode::Stdout => {
+            let mut out = dest.create().context("-o")?;
+            let outcome = run_into(&setup, &mut out, args.plot.is_some())?;
+            (outcome, Some(out))
         }
-        None => (
+        _ => (
             run_into(&setup, io::stdout().lock(), args.plot.is_some())?,
             None,
         ),
@@ -401,7 +407,7 @@ pub fn run(args: &Args) -> Result<()> {
     } = outcome;
     let elapsed = start.elapsed();
 
-    if let (Some(path), Some(values)) = (&args.plot, &kept) {
+    if let (Some(dest), Some(values)) = (&plot_dest, &kept) {
         let columns = info.columns();
         let rates = rate_columns(info);
         let run = plot::trajectory::Run {
@@ -425,16 +431,18 @@ pub fn run(args: &Args) -> Result<()> {
             .map(|(k, v)| format!("{k} = {v}"))
             .collect::<Vec<_>>()
             .join(", ");
-        plot::save(&figure, path)?;
+        plot::save_to(&figure, dest)?;
     }
-    if let Some((path, temp)) = written
-        && let Err(e) = output::commit(temp, path)
+    if let Some(out) = written
+        && let Err(e) = out.finish()
     {
-        if let Some(plot) = &args.plot {
+        if let Some(dest) = &plot_dest
+            && let output::Mode::Atomic { target } = dest.mode()
+        {
             // Do not leave the plot of a run whose CSV could not be written.
-            let _ = std::fs::remove_file(plot);
+            let _ = std::fs::remove_file(target);
         }
-        return Err(e);
+        return Err(e.into());
     }
 
     let r = &setup.resolved;
@@ -443,9 +451,9 @@ pub fn run(args: &Args) -> Result<()> {
     } else {
         format!(" (from {})", setup.origin)
     };
-    let destination = match to_file {
-        Some(p) => p.display().to_string(),
-        None => "stdout".to_string(),
+    let destination = match &args.output {
+        Some(p) if p.as_os_str() != "-" => p.display().to_string(),
+        _ => "stdout".to_string(),
     };
     eprintln!("scene        {}{source}", info.name);
     eprintln!(

@@ -25,7 +25,7 @@ use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
-use anyhow::{Context, Result, bail};
+use anyhow::{Result, bail};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use serde_json::{Value, json};
 use tumble_scenarios::StepControl;
@@ -194,6 +194,8 @@ pub fn run(args: &Args) -> Result<()> {
         .clone()
         .unwrap_or_else(|| default_output(args.file.as_deref()));
 
+    output::check_folder(&dir, &folder_files(&def))?;
+
     // Stage two: the points.
     let bar = progress_bar();
     let mut on_progress = |p: &Progress| update(&bar, p);
@@ -226,7 +228,7 @@ fn finish(
         );
     }
     let results = dir.join("results.csv");
-    write_atomically(&results, &sweep::results_csv(def, &report.rows)?)?;
+    output::write_whole(&results, &sweep::results_csv(def, &report.rows)?)?;
     let plots = if shard == Shard::ALL {
         draw_plots(def, dir, &report.rows)?
     } else {
@@ -235,7 +237,7 @@ fn finish(
     let manifest = manifest(def, report, shard, command, &plots);
     let mut text = serde_json::to_string_pretty(&manifest)?;
     text.push('\n');
-    write_atomically(&dir.join("manifest.json"), text.as_bytes())?;
+    output::write_whole(&dir.join("manifest.json"), text.as_bytes())?;
 
     let failed = report.failures().count();
     let info = def.scene.info();
@@ -295,18 +297,12 @@ fn merge(args: &MergeArgs) -> Result<()> {
         .output
         .clone()
         .unwrap_or_else(|| Path::new("out").join("merged"));
+    output::check_folder(
+        &out,
+        &["results.csv".to_string(), "manifest.json".to_string()],
+    )?;
     let (def, report) = sweep::merge(&args.dirs, &out)?;
     finish(&def, &out, &report, Shard::ALL, "merge")
-}
-
-/// Writes `bytes` to `path` whole or not at all.
-pub(crate) fn write_atomically(path: &Path, bytes: &[u8]) -> Result<()> {
-    use std::io::Write;
-    let mut temp = output::temp_file_beside(path)?;
-    temp.write_all(bytes)
-        .and_then(|()| temp.flush())
-        .with_context(|| format!("cannot write {}", path.display()))?;
-    output::commit(temp.into_temp_path(), path)
 }
 
 fn seconds(d: Duration) -> String {
@@ -391,6 +387,20 @@ fn metric_label(m: Metric) -> String {
     } else {
         format!("{} ({})", m.description(), m.unit())
     }
+}
+
+/// The files a sweep writes into its folder (besides its journal), checked before it runs.
+fn folder_files(def: &SweepDefinition) -> Vec<String> {
+    let mut names = vec!["results.csv".to_string(), "manifest.json".to_string()];
+    if let Some(&metric) = def.metrics.first() {
+        let stem = plot_stem(metric);
+        for kind in ["map", "slices"] {
+            for ext in ["png", "svg"] {
+                names.push(format!("{stem}-{kind}.{ext}"));
+            }
+        }
+    }
+    names
 }
 
 /// The plot files' stem for metric `m`: `tilt` for the tilt metrics, else the metric's name.

@@ -18,7 +18,8 @@ use tumble_scenarios::work_precision::{
 use tumble_scenarios::{Params, Scene, StepControl};
 
 use super::simulate::{SceneArgs, flag_words, load_scene, number};
-use super::sweep::{round_for_label, write_atomically};
+use super::sweep::round_for_label;
+use crate::output;
 use crate::plot;
 use crate::plot::work_precision::Curve;
 use crate::plot::xy::Series;
@@ -111,6 +112,7 @@ pub fn run(args: &Args) -> Result<()> {
         .output
         .clone()
         .unwrap_or_else(|| PathBuf::from("out").join("work-precision").join(stem));
+    output::check_folder(&dir, &folder_files("work-precision"))?;
     std::fs::create_dir_all(&dir)
         .with_context(|| format!("cannot create the output folder {}", dir.display()))?;
 
@@ -155,7 +157,7 @@ pub fn run(args: &Args) -> Result<()> {
         ladders.push(ladder);
     }
 
-    write_atomically(
+    output::write_whole(
         &dir.join("work-precision.csv"),
         csv_text(&ladders)?.as_bytes(),
     )?;
@@ -188,11 +190,20 @@ pub fn run(args: &Args) -> Result<()> {
     );
     let mut text = serde_json::to_string_pretty(&manifest)?;
     text.push('\n');
-    write_atomically(&dir.join("manifest.json"), text.as_bytes())?;
+    output::write_whole(&dir.join("manifest.json"), text.as_bytes())?;
 
     print!("{}", summary(&ladders, t_end));
     eprintln!("output          {}", dir.display());
     Ok(())
+}
+
+/// The files written into the output folder: `STEM.csv`, its plots and `manifest.json`.
+fn folder_files(stem: &str) -> Vec<String> {
+    ["csv", "png", "svg"]
+        .iter()
+        .map(|ext| format!("{stem}.{ext}"))
+        .chain(["manifest.json".to_string()])
+        .collect()
 }
 
 /// `rk4 (4)`, `exact`.
@@ -420,6 +431,7 @@ fn long(
     }
     let h = info.default_step;
     let t_end = h * args.long_steps as f64;
+    output::check_folder(dir, &folder_files("long"))?;
     std::fs::create_dir_all(dir)
         .with_context(|| format!("cannot create the output folder {}", dir.display()))?;
     eprintln!(
@@ -470,7 +482,7 @@ fn long(
     for r in &results {
         report_long(r, &mut csv, &mut lines, &mut table)?;
     }
-    write_atomically(&dir.join("long.csv"), &csv.into_inner()?)?;
+    output::write_whole(&dir.join("long.csv"), &csv.into_inner()?)?;
     let figure = plot::work_precision::long_figure(
         format!(
             "{}: relative energy error over {} steps",

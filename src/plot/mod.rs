@@ -140,9 +140,19 @@ impl Format {
 /// # Errors
 /// An unknown extension, an unwritable directory, or a drawing error.
 pub fn save(figure: &impl Figure, path: &Path) -> Result<()> {
+    save_to(figure, &output::Destination::check(path)?)
+}
+
+/// Draws `figure` into a checked destination: atomically into a regular file, or rendered
+/// aside and then streamed into a device or FIFO.
+///
+/// # Errors
+/// As [`save`].
+pub fn save_to(figure: &impl Figure, dest: &output::Destination) -> Result<()> {
+    let path = dest.path();
     let format = Format::from_path(path)?;
     register_fonts()?;
-    let temp = output::temp_path_beside(path)?;
+    let temp = dest.scratch()?;
     let size = figure.size();
     let drawn = match format {
         Format::Png => {
@@ -171,7 +181,8 @@ pub fn save(figure: &impl Figure, path: &Path) -> Result<()> {
         }
     };
     drawn.with_context(|| format!("cannot draw {}", path.display()))?;
-    output::commit(temp, path)
+    dest.commit_scratch(temp)?;
+    Ok(())
 }
 
 /// Writes an RGB image as PNG with the best compression (plotters' encoder uses the fastest,

@@ -3,6 +3,7 @@
 mod inertia;
 mod scenes;
 mod simulate;
+mod special_files;
 mod support;
 mod sweep;
 mod work_precision;

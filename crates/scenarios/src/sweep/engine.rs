@@ -262,22 +262,10 @@ fn open_folder(
     Ok((writer, BTreeMap::new()))
 }
 
-/// Writes `bytes` to `path` through a temporary file renamed when complete.
+/// Writes `bytes` to `path` whole or not at all (see [`tumble_output`]).
 fn write_whole(path: &Path, bytes: &[u8]) -> Result<(), SweepError> {
-    let name = path
-        .file_name()
-        .map_or_else(|| "file".into(), |n| n.to_string_lossy().into_owned());
-    let temp = path.with_file_name(format!(".{name}.partial"));
-    std::fs::write(&temp, bytes)
-        .and_then(|()| std::fs::rename(&temp, path))
-        .map_err(|source| {
-            let _ = std::fs::remove_file(&temp);
-            SweepError::Io {
-                path: path.to_path_buf(),
-                what: "cannot write",
-                source,
-            }
-        })
+    tumble_output::Destination::check(path)?.write_all(bytes)?;
+    Ok(())
 }
 
 /// The first line where two definition texts differ, for messages.

@@ -183,6 +183,9 @@ pub enum SweepError {
         /// The I/O error.
         source: std::io::Error,
     },
+    /// A file of the sweep folder is not a file that can be written.
+    #[error(transparent)]
+    Output(#[from] tumble_output::OutputError),
     /// The folder already holds a sweep and `--resume` was not asked for.
     #[error(
         "{}: the folder already holds a sweep ({}); pass --resume to continue it, or choose \
