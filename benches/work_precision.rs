@@ -62,7 +62,7 @@ use tumble_scenarios::scenes::free_hoop::{
     self, Flat, FlatFreeHoop, FreeHoop, FreeHoopScene, flatten,
 };
 use tumble_scenarios::work_precision::{self, FinalState, Reference, state_error};
-use tumble_scenarios::{Observe, Params, RunOptions, Scene, StepControl};
+use tumble_scenarios::{Observe, Params, Scene, StepControl};
 
 // ---------------------------------------------------------------------------------------------
 // scene-step
@@ -87,7 +87,7 @@ fn bench_scene_steps(c: &mut Criterion) {
     for &scene in tumble_scenarios::scenes::builtin() {
         let info = scene.info();
         let params = info.default_params();
-        for &integrator in info.integrators {
+        for integrator in info.integrators() {
             let id = format!("{}/{integrator}", info.name);
             let step = match is_adaptive(integrator) {
                 Ok(true) => StepControl::Tolerance(SCENE_TOL),
@@ -97,15 +97,21 @@ fn bench_scene_steps(c: &mut Criterion) {
                     continue;
                 }
             };
-            let options = RunOptions {
-                integrator: Some(integrator.to_string()),
-                step: Some(step),
-                t_end: Some(f64::from(SCENE_STEPS) * info.default_step),
-                every: Some(1),
-                observe: Observe::Ends,
+            let plan = match work_precision::plan(
+                info,
+                integrator,
+                step,
+                f64::from(SCENE_STEPS) * info.default_step,
+                Observe::Ends,
+            ) {
+                Ok(plan) => plan,
+                Err(e) => {
+                    eprintln!("scene-step/{id}: skipped: {e}");
+                    continue;
+                }
             };
             // One run for the step count (and to skip a pair that fails).
-            let steps = match scene.simulate(&params, &options, &mut Discard) {
+            let steps = match scene.simulate(&params, &plan, &mut Discard) {
                 Ok(summary) => summary.steps,
                 Err(e) => {
                     eprintln!("scene-step/{id}: skipped, the run failed: {e}");
@@ -116,7 +122,7 @@ fn bench_scene_steps(c: &mut Criterion) {
             g.bench_function(&id, |b| {
                 b.iter(|| {
                     scene
-                        .simulate(black_box(&params), &options, &mut Discard)
+                        .simulate(black_box(&params), &plan, &mut Discard)
                         .expect("scene run")
                 })
             });
@@ -332,14 +338,15 @@ impl Hoop {
     }
 
     fn ours(&self, method: &str, setting: Setting) -> Result<Outcome, String> {
-        let options = RunOptions {
-            integrator: Some(method.to_string()),
-            step: Some(setting.control()),
-            t_end: Some(HOOP_T_END),
-            every: Some(1),
-            observe: Observe::Ends,
-        };
-        let (state, summary) = work_precision::final_state(&FreeHoopScene, &self.params, &options)
+        let plan = work_precision::plan(
+            FreeHoopScene.info(),
+            method,
+            setting.control(),
+            HOOP_T_END,
+            Observe::Ends,
+        )
+        .map_err(|e| e.to_string())?;
+        let (state, summary) = work_precision::final_state(&FreeHoopScene, &self.params, &plan)
             .map_err(|e| e.to_string())?;
         Ok(Outcome {
             state,

@@ -18,11 +18,11 @@ use std::time::Instant;
 
 use anyhow::{Context, Result, bail};
 use tumble_integrators::Flow;
-use tumble_scenarios::scene::Resolved;
 use tumble_scenarios::scene_file::SceneFile;
 use tumble_scenarios::scenes;
 use tumble_scenarios::{
-    ModelError, Params, Recorder, RunOptions, RunSummary, Scene, SceneError, SceneInfo, StepControl,
+    ModelError, Params, Recorder, RunOptions, RunPlan, RunSummary, Scene, SceneError, SceneInfo,
+    StepControl,
 };
 
 use super::args::parse_angle;
@@ -70,8 +70,7 @@ struct Setup {
     /// `builtin` or the scene file's path.
     origin: String,
     params: Params,
-    options: RunOptions,
-    resolved: Resolved,
+    plan: RunPlan,
 }
 
 /// Whether SCENE names a file rather than a built-in scene.
@@ -166,15 +165,14 @@ fn setup(args: &Args) -> Result<Setup> {
     if args.every.is_some() {
         options.every = args.every;
     }
-    let resolved = options
+    let plan = options
         .resolve(scene.info())
         .map_err(|e| anyhow::anyhow!("{}: {}", scene.info().name, flag_words(&e)))?;
     Ok(Setup {
         scene,
         origin,
         params,
-        options,
-        resolved,
+        plan,
     })
 }
 
@@ -352,7 +350,7 @@ fn run_into<W: Write>(setup: &Setup, out: W, keep: bool) -> Result<Outcome> {
     let mut recorder = CsvRecorder::new(out, &info.columns(), keep)?;
     let result = setup
         .scene
-        .simulate(&setup.params, &setup.options, &mut recorder);
+        .simulate(&setup.params, &setup.plan, &mut recorder);
     let summary = result.map_err(|e| anyhow::anyhow!(failure_message(info, &e)))?;
     let (kept, closed) = recorder.finish().context("cannot write the CSV")?;
     Ok(Outcome {
@@ -420,8 +418,8 @@ pub fn run(args: &Args) -> Result<()> {
             format!(
                 "{} — {}, {}",
                 info.name,
-                setup.resolved.integrator,
-                step_words(setup.resolved.step)
+                setup.plan.integrator(),
+                step_words(setup.plan.step)
             ),
             &run,
         );
@@ -445,7 +443,7 @@ pub fn run(args: &Args) -> Result<()> {
         return Err(e.into());
     }
 
-    let r = &setup.resolved;
+    let r = &setup.plan;
     let source = if setup.origin == "builtin" {
         String::new()
     } else {
@@ -458,7 +456,7 @@ pub fn run(args: &Args) -> Result<()> {
     eprintln!("scene        {}{source}", info.name);
     eprintln!(
         "integrator   {}, {}, t in [0, {}] s",
-        r.integrator,
+        r.integrator(),
         step_words(r.step),
         r.t_end
     );

@@ -254,9 +254,9 @@ fn finish(
     );
     eprintln!(
         "integrator   {}, {}, t in [0, {}] s",
-        def.integrator,
-        step_words(def.step),
-        def.t_end
+        def.plan.integrator(),
+        step_words(def.plan.step),
+        def.plan.t_end
     );
     if command == "merge" {
         eprintln!("merged       {} points", report.rows.len());
@@ -443,11 +443,11 @@ fn draw_plots(def: &SweepDefinition, dir: &Path, rows: &[PointRow]) -> Result<Ve
     let x_axis = &def.axes[0];
     let xs = x_axis.grid_values();
     let increasing = |v: &[f64]| v.windows(2).all(|w| w[0] < w[1]);
-    let horizon = format!("over t in [0, {}] s", def.t_end);
+    let horizon = format!("over t in [0, {}] s", def.plan.t_end);
     let subtitle = format!(
         "{}, {}; {}",
-        def.integrator,
-        step_words(def.step),
+        def.plan.integrator(),
+        step_words(def.plan.step),
         fixed_parameters(def)
     );
     let mut written = Vec::new();
@@ -605,7 +605,7 @@ fn definition_json(def: &SweepDefinition) -> Value {
             }),
         })
         .collect();
-    let (dt, tol) = match def.step {
+    let (dt, tol) = match def.plan.step {
         StepControl::Fixed(h) => (Some(h), None),
         StepControl::Tolerance(t) => (None, Some(t)),
     };
@@ -613,7 +613,7 @@ fn definition_json(def: &SweepDefinition) -> Value {
         "origin": def.origin,
         "scene": def.scene.info().name,
         "parameters": parameters,
-        "run": {"integrator": def.integrator, "dt": dt, "tol": tol, "t_end": def.t_end},
+        "run": {"integrator": def.plan.integrator(), "dt": dt, "tol": tol, "t_end": def.plan.t_end},
         "axes": axes,
         "sampling": match def.sampling {
             Sampling::Grid => json!({"kind": "grid"}),
@@ -639,7 +639,7 @@ fn manifest(
         .failures()
         .map(|r| json!({"index": r.index, "status": r.status.name(), "reason": r.reason}))
         .collect();
-    let (dt, tol) = match def.step {
+    let (dt, tol) = match def.plan.step {
         StepControl::Fixed(h) => (Some(h), None),
         StepControl::Tolerance(t) => (None, Some(t)),
     };
@@ -654,10 +654,10 @@ fn manifest(
         "command": command,
         "definition": definition_json(def),
         "definition_toml": def.to_toml(),
-        "integrator": def.integrator,
+        "integrator": def.plan.integrator(),
         "dt": dt,
         "tol": tol,
-        "t_end": def.t_end,
+        "t_end": def.plan.t_end,
         "shard": shard.to_string(),
         "points": report.total,
         "ok": report.rows.len() - failures.len(),

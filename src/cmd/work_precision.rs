@@ -60,11 +60,11 @@ pub fn run(args: &Args) -> Result<()> {
     let (scene, origin, params, file_options) = load_scene(&args.target)?;
     let info = scene.info();
     for name in &args.integrators {
-        if !info.integrators.contains(&name.as_str()) {
+        if !info.runs(name) {
             bail!(
                 "--integrators: `{name}` cannot run scene `{}`; applicable: {}",
                 info.name,
-                info.integrators.join(", ")
+                info.integrators().join(", ")
             );
         }
     }
@@ -104,7 +104,10 @@ pub fn run(args: &Args) -> Result<()> {
     .resolve(info)
     .map_err(|e| anyhow::anyhow!("{}: {}", info.name, flag_words(&e)))?;
     let integrators: Vec<String> = if args.integrators.is_empty() {
-        info.integrators.iter().map(|s| (*s).to_string()).collect()
+        info.integrators()
+            .iter()
+            .map(|s| (*s).to_string())
+            .collect()
     } else {
         args.integrators.clone()
     };
@@ -426,7 +429,7 @@ fn long(
             "{}: no fixed-step symplectic, variational or Lie-group method to run (the scene \
              takes {})",
             info.name,
-            info.integrators.join(", ")
+            info.integrators().join(", ")
         );
     }
     let h = info.default_step;
@@ -443,9 +446,7 @@ fn long(
         .map(|m| (m.clone(), StepControl::Fixed(h)))
         .collect();
     // DOP853 at the cost of the scene's default method (or the first one), probed on 2000 steps.
-    let adaptive = ["dop853", "dp5"]
-        .into_iter()
-        .find(|a| info.integrators.contains(a));
+    let adaptive = ["dop853", "dp5"].into_iter().find(|a| info.runs(a));
     let mut matched = String::new();
     if let Some(a) = adaptive {
         let probe = (2000.0 * h).min(t_end);

@@ -54,7 +54,7 @@ fn json_lists_every_builtin_scene_with_its_parameters_columns_and_defaults() {
             .iter()
             .map(|c| c.as_str().unwrap())
             .collect();
-        assert_eq!(integrators, info.integrators);
+        assert_eq!(integrators, info.integrators());
         assert!(!entry["conserved"].as_array().unwrap().is_empty());
     }
 }

@@ -145,7 +145,7 @@ fn csv_values_round_trip_to_the_library_run_bit_for_bit() {
     let scene = find("spinning-hoop").unwrap();
     let mut expected = Rows::default();
     scene
-        .simulate(
+        .run(
             &scene.info().default_params(),
             &RunOptions {
                 integrator: Some("gauss6".into()),

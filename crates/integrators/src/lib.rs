@@ -95,7 +95,7 @@ pub use problem::{
     Counted, Evaluations, FnOde, HamiltonianOde, HamiltonianSplit, Ode, SeparableHamiltonian,
     SplitOde,
 };
-pub use registry::{Family, MethodInfo, Order, Properties};
+pub use registry::{Family, MethodInfo, Order, ProblemKind, Properties};
 pub use state::{State, VectorState};
 pub use stepper::{AdaptiveStepper, DenseOutput, Stepper, Tolerances};
 pub use symplectic::{

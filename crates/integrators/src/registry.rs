@@ -54,6 +54,47 @@ impl Family {
     }
 }
 
+/// A kind of problem a method integrates: what it needs of the equations. A model offers one or
+/// more kinds (a free rigid body is also a rigid body, a Lie-group vector field and, flattened, a
+/// first-order ODE); a method runs it when they share a kind.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
+#[serde(rename_all = "kebab-case")]
+#[non_exhaustive]
+pub enum ProblemKind {
+    /// A first-order system `y' = f(t, y)` on ℝⁿ ([`crate::Ode`]).
+    Ode,
+    /// A separable Hamiltonian `H = T(p) + V(q)` ([`crate::SeparableHamiltonian`]).
+    Separable,
+    /// A system split into parts whose flows are known ([`crate::SplitOde`]).
+    Split,
+    /// A vector field on `SO(3) × ℝⁿ`, `Ṙ = R hat ξ(t, R, y)`, `ẏ = f(t, R, y)`
+    /// ([`crate::rigid::LieVectorField`]).
+    LieVectorField,
+    /// A rigid body: inertia and a potential with its moment ([`crate::rigid::RigidBody`]).
+    RigidBody,
+    /// A torque-free rigid body ([`crate::rigid::FreeRigidBody`]).
+    FreeRigidBody,
+    /// A rigid body coupled to internal coordinates by a Lagrangian on `SO(3) × ℝⁿ`
+    /// ([`crate::rigid::CoupledLagrangian`]).
+    CoupledRigidBody,
+}
+
+impl ProblemKind {
+    /// Lowercase display name.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            ProblemKind::Ode => "ode",
+            ProblemKind::Separable => "separable",
+            ProblemKind::Split => "split",
+            ProblemKind::LieVectorField => "lie-vector-field",
+            ProblemKind::RigidBody => "rigid-body",
+            ProblemKind::FreeRigidBody => "free-rigid-body",
+            ProblemKind::CoupledRigidBody => "coupled-rigid-body",
+        }
+    }
+}
+
 /// Order of convergence of a method.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Order {
@@ -141,8 +182,10 @@ pub struct MethodInfo {
     pub properties: Properties,
     /// Number of stages (right-hand-side evaluations or base steps per step).
     pub stages: u32,
-    /// What the method needs of the problem.
+    /// What the method needs of the problem, in words.
     pub problem: &'static str,
+    /// The kinds of problem it integrates.
+    pub problems: &'static [ProblemKind],
     /// One line: what it is, and its source.
     pub summary: &'static str,
 }
@@ -204,6 +247,7 @@ const fn split_entry(
         properties: LIE_SYMPLECTIC_EXPLICIT,
         stages: table.gammas.len() as u32,
         problem: RIGID_BODY,
+        problems: &[ProblemKind::RigidBody],
         summary,
     }
 }
@@ -219,6 +263,7 @@ const fn composition_entry(
         properties: SYMPLECTIC_EXPLICIT,
         stages: table.gammas.len() as u32,
         problem: "any symmetric order-2 base stepper (default: Störmer–Verlet on a separable Hamiltonian)",
+        problems: &[ProblemKind::Separable],
         summary,
     }
 }
@@ -231,6 +276,7 @@ const fn gauss_entry(name: &'static str, stages: u32) -> MethodInfo {
         properties: GAUSS,
         stages,
         problem: "first-order ODE y' = f(t, y)",
+        problems: &[ProblemKind::Ode],
         summary: "Gauss–Legendre collocation; fixed-point to stagnation or Newton (faer LU), compensated summation (Hairer–McLachlan–Razakarivony 2008)",
     }
 }
@@ -244,6 +290,7 @@ pub const METHODS: &[MethodInfo] = &[
         properties: EXPLICIT,
         stages: 4,
         problem: "first-order ODE y' = f(t, y)",
+        problems: &[ProblemKind::Ode],
         summary: "classical Runge–Kutta (Kutta 1901), cubic Hermite dense output",
     },
     MethodInfo {
@@ -253,6 +300,7 @@ pub const METHODS: &[MethodInfo] = &[
         properties: ADAPTIVE,
         stages: 7,
         problem: "first-order ODE y' = f(t, y)",
+        problems: &[ProblemKind::Ode],
         summary: "Dormand–Prince 5(4) (1980), FSAL, PI control, Shampine's order-4 dense output",
     },
     MethodInfo {
@@ -262,6 +310,7 @@ pub const METHODS: &[MethodInfo] = &[
         properties: ADAPTIVE,
         stages: 12,
         problem: "first-order ODE y' = f(t, y)",
+        problems: &[ProblemKind::Ode],
         summary: "Dormand–Prince 8(5,3) as in Hairer's DOP853, order-7 dense output",
     },
     MethodInfo {
@@ -274,6 +323,7 @@ pub const METHODS: &[MethodInfo] = &[
         },
         stages: 1,
         problem: "separable Hamiltonian H = T(p) + V(q)",
+        problems: &[ProblemKind::Separable],
         summary: "symplectic Euler (kick, then drift), compensated summation",
     },
     MethodInfo {
@@ -283,6 +333,7 @@ pub const METHODS: &[MethodInfo] = &[
         properties: SYMPLECTIC_EXPLICIT,
         stages: 1,
         problem: "separable Hamiltonian H = T(p) + V(q)",
+        problems: &[ProblemKind::Separable],
         summary: "Störmer–Verlet (kick–drift–kick), compensated summation",
     },
     MethodInfo {
@@ -295,6 +346,7 @@ pub const METHODS: &[MethodInfo] = &[
         },
         stages: 1,
         problem: "split system given by the flows of its parts",
+        problems: &[ProblemKind::Split],
         summary: "Strang splitting (symplectic when every sub-flow is)",
     },
     composition_entry(&composition::YOSHIDA4, "triple jump (Yoshida 1990)"),
@@ -330,6 +382,7 @@ pub const METHODS: &[MethodInfo] = &[
         properties: LIE_VARIATIONAL,
         stages: 1,
         problem: RIGID_BODY,
+        problems: &[ProblemKind::RigidBody, ProblemKind::CoupledRigidBody],
         summary: "Lie group variational integrator (Lee, Leok & McClamroch 2005/2007), Newton on the Cayley vector; composes to 4/6/8",
     },
     MethodInfo {
@@ -339,6 +392,7 @@ pub const METHODS: &[MethodInfo] = &[
         properties: LIE_EXPLICIT,
         stages: 4,
         problem: "vector field on SO(3) × R^n: R' = R hat(xi(t, R, y)), y' = f(t, R, y)",
+        problems: &[ProblemKind::LieVectorField],
         summary: "Runge–Kutta–Munthe-Kaas with the classical RK4 coefficients and the exact dexpinv (Munthe-Kaas 1999)",
     },
     MethodInfo {
@@ -348,6 +402,7 @@ pub const METHODS: &[MethodInfo] = &[
         properties: LIE_EXPLICIT,
         stages: 3,
         problem: "vector field on SO(3) × R^n: R' = R hat(xi(t, R, y)), y' = f(t, R, y)",
+        problems: &[ProblemKind::LieVectorField],
         summary: "Crouch–Grossman order 3 (Crouch & Grossman 1993; coefficients as in Owren & Marthinsen 1999)",
     },
     MethodInfo {
@@ -357,6 +412,7 @@ pub const METHODS: &[MethodInfo] = &[
         properties: LIE_SYMPLECTIC_EXPLICIT,
         stages: 1,
         problem: RIGID_BODY,
+        problems: &[ProblemKind::RigidBody],
         summary: "Strang splitting into exact principal-axis rotations (and potential kicks): McLachlan 1993, Touma & Wisdom 1994, Dullweber, Leimkuhler & McLachlan 1997",
     },
     split_entry(
@@ -381,6 +437,7 @@ pub const METHODS: &[MethodInfo] = &[
         properties: LIE_SYMPLECTIC_EXPLICIT,
         stages: 1,
         problem: RIGID_BODY,
+        problems: &[ProblemKind::RigidBody],
         summary: "Strang splitting: potential kicks and the exact free-rigid-body flow (Celledoni, Fassò, Säfström & Zanna 2008); exact for V = 0",
     },
     MethodInfo {
@@ -390,6 +447,7 @@ pub const METHODS: &[MethodInfo] = &[
         properties: LIE_VARIATIONAL,
         stages: 1,
         problem: "free rigid body (inertia J)",
+        problems: &[ProblemKind::FreeRigidBody],
         summary: "discrete Moser–Veselov (Moser & Veselov 1991), quaternion fixed point as in Hairer, Lubich & Wanner §VII.5",
     },
     MethodInfo {
@@ -402,6 +460,7 @@ pub const METHODS: &[MethodInfo] = &[
         },
         stages: 1,
         problem: "free rigid body (inertia J)",
+        problems: &[ProblemKind::FreeRigidBody],
         summary: "exact free-rigid-body flow: Jacobi elliptic functions and Carlson's R_J (Celledoni, Fassò, Säfström & Zanna 2008, corrected)",
     },
 ];

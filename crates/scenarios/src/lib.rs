@@ -17,6 +17,7 @@
 //! * **Errors, not NaN.** Coordinate singularities (an ill-conditioned mass matrix) and bad
 //!   parameters are [`ModelError`]s carrying what and where. The library never prints.
 
+pub mod dispatch;
 pub mod error;
 pub mod lagrangian;
 pub mod params;
@@ -29,4 +30,6 @@ pub mod work_precision;
 pub use error::{ModelError, SceneError};
 pub use lagrangian::{EulerLagrange, Lagrangian, LagrangianOde};
 pub use params::{Domain, ParamSpec, Params};
-pub use scene::{Observe, Recorder, RunOptions, RunSummary, Scene, SceneInfo, StepControl};
+pub use scene::{
+    Observe, Recorder, RunOptions, RunPlan, RunSummary, Scene, SceneInfo, StepControl,
+};

@@ -8,11 +8,10 @@
 //! stores it.
 
 use nalgebra::SVector;
-use tumble_integrators::{
-    Driver, Event, ExplicitRungeKutta, Flow, Observer, Ode, Tolerances, gauss2, gauss4, gauss6,
-    gauss8, gauss10, gauss12,
-};
+use tumble_integrators::registry::{self, MethodInfo};
+use tumble_integrators::{Driver, Event, Flow, Observer, Ode, ProblemKind};
 
+use crate::dispatch;
 use crate::error::SceneError;
 use crate::params::{ParamSpec, Params};
 
@@ -31,8 +30,11 @@ pub struct SceneInfo {
     pub conserved: &'static [&'static str],
     /// The oracle its tests use.
     pub oracle: &'static str,
-    /// Integrators that apply.
-    pub integrators: &'static [&'static str],
+    /// The kinds of problem its model offers, most specific first: a method runs the scene
+    /// when it integrates one of them (the first it shares is used), see [`Self::integrators`].
+    pub problems: &'static [ProblemKind],
+    /// Its runs locate events, so a method needs dense output to run it.
+    pub needs_dense_output: bool,
     /// Default integrator.
     pub default_integrator: &'static str,
     /// Default fixed step (s) for fixed-step integrators (adaptive ones default to a tolerance of
@@ -70,6 +72,35 @@ impl SceneInfo {
     #[must_use]
     pub fn default_params(&self) -> Params {
         Params::defaults(self.name, self.parameters)
+    }
+
+    /// The kind of problem `method` integrates this scene as, or `None` when it cannot run it
+    /// (it shares no kind with the scene, or lacks the dense output the scene's events need).
+    #[must_use]
+    pub fn kind_for(&self, method: &MethodInfo) -> Option<ProblemKind> {
+        if self.needs_dense_output && !method.properties.dense_output {
+            return None;
+        }
+        self.problems
+            .iter()
+            .copied()
+            .find(|k| method.problems.contains(k))
+    }
+
+    /// Every registry method that runs this scene, in registry order.
+    #[must_use]
+    pub fn integrators(&self) -> Vec<&'static str> {
+        registry::methods()
+            .iter()
+            .filter(|m| self.kind_for(m).is_some())
+            .map(|m| m.name)
+            .collect()
+    }
+
+    /// Whether the method called `name` runs this scene.
+    #[must_use]
+    pub fn runs(&self, name: &str) -> bool {
+        registry::find(name).is_ok_and(|m| self.kind_for(m).is_some())
     }
 }
 
@@ -110,11 +141,15 @@ pub struct RunOptions {
     pub observe: Observe,
 }
 
-/// Run options with the defaults filled in and validated.
+/// A validated run: the method (from the registry) and the kind of problem it integrates the
+/// scene as, the step or tolerance, the horizon and the output cadence. Built once by
+/// [`RunOptions::resolve`] and passed forward by reference; nothing validates it again.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Resolved {
-    /// Integrator name.
-    pub integrator: String,
+pub struct RunPlan {
+    /// The method.
+    pub method: &'static MethodInfo,
+    /// The kind of problem the method integrates the scene as.
+    pub kind: ProblemKind,
     /// Step or tolerance.
     pub step: StepControl,
     /// Horizon (s).
@@ -125,7 +160,35 @@ pub struct Resolved {
     pub observe: Observe,
 }
 
-impl Resolved {
+impl RunPlan {
+    /// The method's registry name.
+    #[must_use]
+    pub fn integrator(&self) -> &'static str {
+        self.method.name
+    }
+
+    /// The same plan with another step or tolerance, checked as [`RunOptions::resolve`] checks
+    /// one (a ladder's rungs).
+    ///
+    /// # Errors
+    /// [`SceneError::InvalidOption`] for a step or tolerance the method cannot take.
+    pub fn with_step(&self, step: StepControl) -> Result<Self, SceneError> {
+        check_step(self.method, step, self.t_end)?;
+        Ok(Self {
+            step,
+            ..self.clone()
+        })
+    }
+
+    /// The same plan observing only the initial and final states.
+    #[must_use]
+    pub fn observing(&self, observe: Observe) -> Self {
+        Self {
+            observe,
+            ..self.clone()
+        }
+    }
+
     /// The driver over `[0, t_end]` that calls the observer at every step, or (with
     /// [`Observe::Ends`]) only at the start and the end.
     pub(crate) fn driver(&self) -> Result<Driver<'_>, SceneError> {
@@ -138,25 +201,26 @@ impl Resolved {
 }
 
 impl RunOptions {
-    /// Fills in `info`'s defaults and validates.
+    /// Fills in `info`'s defaults and validates: the one place run options become a
+    /// [`RunPlan`].
     ///
     /// # Errors
     /// [`SceneError::UnsupportedIntegrator`] or [`SceneError::InvalidOption`] for a
     /// non-positive, non-finite or larger-than-the-horizon step, a non-positive tolerance or
     /// horizon, or `every = 0`.
-    pub fn resolve(&self, info: &SceneInfo) -> Result<Resolved, SceneError> {
-        let integrator = self
+    pub fn resolve(&self, info: &SceneInfo) -> Result<RunPlan, SceneError> {
+        let name = self
             .integrator
-            .clone()
-            .unwrap_or_else(|| info.default_integrator.to_string());
-        if !info.integrators.contains(&integrator.as_str()) {
-            return Err(SceneError::UnsupportedIntegrator {
-                scene: info.name.to_string(),
-                name: integrator,
-                applicable: info.integrators.join(", "),
-            });
-        }
-        let adaptive = matches!(integrator.as_str(), "dp5" | "dop853");
+            .as_deref()
+            .unwrap_or(info.default_integrator);
+        let unsupported = || SceneError::UnsupportedIntegrator {
+            scene: info.name.to_string(),
+            name: name.to_string(),
+            applicable: info.integrators().join(", "),
+        };
+        let method = registry::find(name).map_err(|_| unsupported())?;
+        let kind = info.kind_for(method).ok_or_else(unsupported)?;
+        let adaptive = method.properties.adaptive;
         let t_end = self.t_end.unwrap_or(info.default_t_end);
         if !(t_end.is_finite() && t_end > 0.0) {
             return Err(SceneError::InvalidOption {
@@ -170,47 +234,7 @@ impl RunOptions {
             None if adaptive => StepControl::Tolerance(1e-10),
             None => StepControl::Fixed(info.default_step),
         };
-        match step {
-            StepControl::Fixed(h) => {
-                if !(h.is_finite() && h > 0.0) {
-                    return Err(SceneError::InvalidOption {
-                        option: "dt",
-                        value: h,
-                        reason: "the step must be finite and positive".into(),
-                    });
-                }
-                if h > t_end {
-                    return Err(SceneError::InvalidOption {
-                        option: "dt",
-                        value: h,
-                        reason: format!("the step is larger than the horizon t_end = {t_end}"),
-                    });
-                }
-                if adaptive {
-                    return Err(SceneError::InvalidOption {
-                        option: "dt",
-                        value: h,
-                        reason: format!("`{integrator}` is adaptive: give a tolerance instead"),
-                    });
-                }
-            }
-            StepControl::Tolerance(tol) => {
-                if !(tol.is_finite() && tol > 0.0) {
-                    return Err(SceneError::InvalidOption {
-                        option: "tol",
-                        value: tol,
-                        reason: "the tolerance must be finite and positive".into(),
-                    });
-                }
-                if !adaptive {
-                    return Err(SceneError::InvalidOption {
-                        option: "tol",
-                        value: tol,
-                        reason: format!("`{integrator}` has a fixed step: give a step instead"),
-                    });
-                }
-            }
-        }
+        check_step(method, step, t_end)?;
         let every = self.every.unwrap_or(1);
         if every == 0 {
             return Err(SceneError::InvalidOption {
@@ -219,14 +243,65 @@ impl RunOptions {
                 reason: "must be at least 1".into(),
             });
         }
-        Ok(Resolved {
-            integrator,
+        Ok(RunPlan {
+            method,
+            kind,
             step,
             t_end,
             every,
             observe: self.observe,
         })
     }
+}
+
+/// Checks a step or tolerance for `method` over `[0, t_end]`: finite and positive, a step no
+/// larger than the horizon, a tolerance only for an adaptive method and a step only for a
+/// fixed-step one.
+fn check_step(method: &MethodInfo, step: StepControl, t_end: f64) -> Result<(), SceneError> {
+    let integrator = method.name;
+    let adaptive = method.properties.adaptive;
+    match step {
+        StepControl::Fixed(h) => {
+            if !(h.is_finite() && h > 0.0) {
+                return Err(SceneError::InvalidOption {
+                    option: "dt",
+                    value: h,
+                    reason: "the step must be finite and positive".into(),
+                });
+            }
+            if h > t_end {
+                return Err(SceneError::InvalidOption {
+                    option: "dt",
+                    value: h,
+                    reason: format!("the step is larger than the horizon t_end = {t_end}"),
+                });
+            }
+            if adaptive {
+                return Err(SceneError::InvalidOption {
+                    option: "dt",
+                    value: h,
+                    reason: format!("`{integrator}` is adaptive: give a tolerance instead"),
+                });
+            }
+        }
+        StepControl::Tolerance(tol) => {
+            if !(tol.is_finite() && tol > 0.0) {
+                return Err(SceneError::InvalidOption {
+                    option: "tol",
+                    value: tol,
+                    reason: "the tolerance must be finite and positive".into(),
+                });
+            }
+            if !adaptive {
+                return Err(SceneError::InvalidOption {
+                    option: "tol",
+                    value: tol,
+                    reason: format!("`{integrator}` has a fixed step: give a step instead"),
+                });
+            }
+        }
+    }
+    Ok(())
 }
 
 /// Receives the rows of a run: `t`, coordinates, rates, diagnostics.
@@ -276,17 +351,32 @@ pub trait Scene: Sync {
     /// Its documentation.
     fn info(&self) -> &'static SceneInfo;
 
-    /// Runs it.
+    /// Runs it with a validated plan (from [`RunOptions::resolve`] on this scene's info).
     ///
     /// # Errors
-    /// Invalid parameters or options, model failures and integration failures, each a
-    /// [`SceneError`] saying what and where.
+    /// Invalid parameters, model failures and integration failures, each a [`SceneError`]
+    /// saying what and where.
     fn simulate(
+        &self,
+        params: &Params,
+        plan: &RunPlan,
+        recorder: &mut dyn Recorder,
+    ) -> Result<RunSummary, SceneError>;
+
+    /// Validates `options` into a plan, then runs it: for callers that hold raw options once
+    /// (tests, one-off runs); a study that runs many points resolves once and calls
+    /// [`Scene::simulate`].
+    ///
+    /// # Errors
+    /// As [`RunOptions::resolve`] and [`Scene::simulate`].
+    fn run(
         &self,
         params: &Params,
         options: &RunOptions,
         recorder: &mut dyn Recorder,
-    ) -> Result<RunSummary, SceneError>;
+    ) -> Result<RunSummary, SceneError> {
+        self.simulate(params, &options.resolve(self.info())?, recorder)
+    }
 }
 
 /// The unit quaternion of a rotation matrix with its sign chosen continuous along a run (`q` and
@@ -307,11 +397,6 @@ pub(crate) fn continuous_quaternion(
     *previous = Some(q);
     q
 }
-
-/// Integrators that run any first-order system `y' = f(t, y)`.
-pub const VECTOR_INTEGRATORS: &[&str] = &[
-    "rk4", "dp5", "dop853", "gauss2", "gauss4", "gauss6", "gauss8", "gauss10", "gauss12",
-];
 
 /// Observer that turns states (of any type) into rows, tracks the relative energy error at
 /// every step and hands every `every`-th row to the recorder.
@@ -389,8 +474,9 @@ impl<S, F: FnMut(f64, &S, &mut [f64])> Observer<S> for RowObserver<'_, S, F> {
     }
 }
 
-/// Runs a first-order system with any of [`VECTOR_INTEGRATORS`] (with `events`, only those with
-/// dense output: rk4, dp5, dop853; a terminal event ends the run there).
+/// Runs a first-order system ([`ProblemKind::Ode`]) with the plan's method through
+/// [`dispatch::run_ode`], turning states into rows (with `events`, only methods with dense
+/// output run it; a terminal event ends the run there).
 ///
 /// `row(t, y, out)` writes a row (`t`, coordinates, rates, diagnostics; `out` has `columns`
 /// entries); column `energy_column` must hold the energy, and the one after it receives the
@@ -398,7 +484,7 @@ impl<S, F: FnMut(f64, &S, &mut [f64])> Observer<S> for RowObserver<'_, S, F> {
 pub fn run_vector<P, F, const S: usize>(
     problem: &P,
     y0: SVector<f64, S>,
-    resolved: &Resolved,
+    plan: &RunPlan,
     columns: usize,
     energy_column: usize,
     row: F,
@@ -409,89 +495,8 @@ where
     P: Ode<SVector<f64, S>>,
     F: FnMut(f64, &SVector<f64, S>, &mut [f64]),
 {
-    let counted = tumble_integrators::Counted::new(ByRef(problem));
     let mut y = y0;
-    let mut observer = RowObserver::new(columns, energy_column, resolved.every, row, recorder);
-    let driver = resolved.driver()?;
-    let unsupported = |name: &str| SceneError::UnsupportedIntegrator {
-        scene: String::new(),
-        name: name.to_string(),
-        applicable: VECTOR_INTEGRATORS.join(", "),
-    };
-    let report = match resolved.step {
-        StepControl::Tolerance(tol) => {
-            let tolerances = Tolerances::new(tol, tol)?;
-            macro_rules! adaptive {
-                ($stepper:expr) => {{
-                    let mut stepper = $stepper;
-                    driver.run_adaptive(
-                        &mut stepper,
-                        &counted,
-                        &mut y,
-                        &tolerances,
-                        &mut *events,
-                        &mut observer,
-                    )?
-                }};
-            }
-            match resolved.integrator.as_str() {
-                "dp5" => adaptive!(ExplicitRungeKutta::dp5().stepper(&y)),
-                "dop853" => adaptive!(ExplicitRungeKutta::dop853().stepper(&y)),
-                other => return Err(unsupported(other)),
-            }
-        }
-        StepControl::Fixed(h) => {
-            macro_rules! fixed {
-                ($stepper:expr) => {{
-                    let mut stepper = $stepper;
-                    driver.run_fixed(&mut stepper, &counted, &mut y, h, &mut observer)?
-                }};
-            }
-            let with_events = !events.is_empty();
-            match resolved.integrator.as_str() {
-                "rk4" if with_events => {
-                    let mut stepper = ExplicitRungeKutta::rk4().stepper(&y);
-                    driver.run_fixed_with_events(
-                        &mut stepper,
-                        &counted,
-                        &mut y,
-                        h,
-                        &mut *events,
-                        &mut observer,
-                    )?
-                }
-                _ if with_events => {
-                    return Err(SceneError::UnsupportedIntegrator {
-                        scene: String::new(),
-                        name: resolved.integrator.clone(),
-                        applicable:
-                            "rk4, dp5, dop853 (this run locates events, which needs dense output)"
-                                .into(),
-                    });
-                }
-                "rk4" => fixed!(ExplicitRungeKutta::rk4().stepper(&y)),
-                "gauss2" => fixed!(gauss2().stepper(&y)),
-                "gauss4" => fixed!(gauss4().stepper(&y)),
-                "gauss6" => fixed!(gauss6().stepper(&y)),
-                "gauss8" => fixed!(gauss8().stepper(&y)),
-                "gauss10" => fixed!(gauss10().stepper(&y)),
-                "gauss12" => fixed!(gauss12().stepper(&y)),
-                other => return Err(unsupported(other)),
-            }
-        }
-    };
-    Ok(observer.summary(report.t, report.steps, counted.evaluations().rhs))
-}
-
-/// A problem used through a reference (the integrators' traits are implemented for owned
-/// problems).
-struct ByRef<'a, P>(&'a P);
-
-impl<P: Ode<SVector<f64, S>>, const S: usize> Ode<SVector<f64, S>> for ByRef<'_, P> {
-    fn rhs(&self, t: f64, y: &SVector<f64, S>, dy: &mut SVector<f64, S>) {
-        self.0.rhs(t, y, dy);
-    }
-    fn jacobian(&self, t: f64, y: &SVector<f64, S>, jac: &mut [f64]) -> bool {
-        self.0.jacobian(t, y, jac)
-    }
+    let mut observer = RowObserver::new(columns, energy_column, plan.every, row, recorder);
+    let outcome = dispatch::run_ode(problem, &mut y, plan, events, &mut observer)?;
+    Ok(observer.summary(outcome.t, outcome.steps, outcome.evaluations))
 }

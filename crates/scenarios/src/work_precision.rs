@@ -33,7 +33,9 @@ use tumble_integrators::verification::fit_power_law;
 
 use crate::error::SceneError;
 use crate::params::Params;
-use crate::scene::{Observe, Recorder, RunOptions, RunSummary, Scene, SceneInfo, StepControl};
+use crate::scene::{
+    Observe, Recorder, RunOptions, RunPlan, RunSummary, Scene, SceneInfo, StepControl,
+};
 use tumble_integrators::Flow;
 
 /// Keeps the last row of a run (the final state), overwriting it in place.
@@ -71,11 +73,11 @@ pub struct FinalState {
 pub fn final_state(
     scene: &dyn Scene,
     params: &Params,
-    options: &RunOptions,
+    plan: &RunPlan,
 ) -> Result<(FinalState, RunSummary), SceneError> {
     let info = scene.info();
     let mut rec = LastRow::default();
-    let summary = scene.simulate(params, options, &mut rec)?;
+    let summary = scene.simulate(params, plan, &mut rec)?;
     let n = state_len(info);
     let values = rec.last.get(1..=n).map(<[f64]>::to_vec).unwrap_or_default();
     Ok((
@@ -235,7 +237,17 @@ pub struct Ladder {
     pub stop: String,
 }
 
-fn options(integrator: &str, control: StepControl, t_end: f64, observe: Observe) -> RunOptions {
+/// The validated plan of `integrator` at `control` over `[0, t_end]` on `info`'s scene.
+///
+/// # Errors
+/// An integrator the scene does not take, or an invalid step, tolerance or horizon.
+pub fn plan(
+    info: &SceneInfo,
+    integrator: &str,
+    control: StepControl,
+    t_end: f64,
+    observe: Observe,
+) -> Result<RunPlan, SceneError> {
     RunOptions {
         integrator: Some(integrator.to_string()),
         step: Some(control),
@@ -243,6 +255,7 @@ fn options(integrator: &str, control: StepControl, t_end: f64, observe: Observe)
         every: Some(1),
         observe,
     }
+    .resolve(info)
 }
 
 fn describe(integrator: &str, control: StepControl) -> String {
@@ -258,7 +271,7 @@ fn describe(integrator: &str, control: StepControl) -> String {
 /// A failing reference run.
 pub fn reference(scene: &dyn Scene, params: &Params, t_end: f64) -> Result<Reference, SceneError> {
     let info = scene.info();
-    let has = |name: &str| info.integrators.contains(&name);
+    let has = |name: &str| info.runs(name);
     let h_small = refine_step(info.default_step / 16.0, t_end);
     let dop853 = StepControl::Tolerance(1e-13);
     let gauss = ["gauss12", "gauss10", "gauss8"]
@@ -285,7 +298,7 @@ pub fn reference(scene: &dyn Scene, params: &Params, t_end: f64) -> Result<Refer
         )
     };
     let run = |name: &str, c: StepControl| {
-        final_state(scene, params, &options(name, c, t_end, Observe::Ends)).map(|(s, _)| s)
+        final_state(scene, params, &plan(info, name, c, t_end, Observe::Ends)?).map(|(s, _)| s)
     };
     let state = run(method, control)?;
     let checked = run(check, check_control)?;
@@ -338,25 +351,19 @@ fn median(values: &mut [f64]) -> f64 {
 pub fn rung(
     scene: &dyn Scene,
     params: &Params,
-    integrator: &str,
-    control: StepControl,
-    t_end: f64,
+    plan: &RunPlan,
     reference: &FinalState,
 ) -> Result<Rung, SceneError> {
     let info = scene.info();
     let start = Instant::now();
-    let (state, summary) = final_state(
-        scene,
-        params,
-        &options(integrator, control, t_end, Observe::EveryStep),
-    )?;
+    let (state, summary) = final_state(scene, params, &plan.observing(Observe::EveryStep))?;
     let monitored = start.elapsed().as_secs_f64();
     // Timing: samples of back-to-back runs lasting at least 5 ms each (a single µs-scale run is
     // at the mercy of a timer tick or a neighbour's burst), the median of 5 samples (3 for runs
     // over 0.1 s).
     let batch = (5e-3 / monitored.max(1e-9)).ceil().clamp(1.0, 1e5) as usize;
     let samples = if monitored < 0.1 { 5 } else { 3 };
-    let quiet = options(integrator, control, t_end, Observe::Ends);
+    let quiet = plan.observing(Observe::Ends);
     let mut times = Vec::with_capacity(samples);
     for _ in 0..samples {
         let start = Instant::now();
@@ -373,8 +380,8 @@ pub fn rung(
     }
     let repeats = samples * batch;
     Ok(Rung {
-        integrator: integrator.to_string(),
-        control,
+        integrator: plan.integrator().to_string(),
+        control: plan.step,
         steps: summary.steps,
         evaluations: summary.evaluations,
         error: state_error(info, &state, reference),
@@ -404,14 +411,14 @@ pub fn ladder(
     progress: &mut dyn FnMut(&Rung),
 ) -> Result<Ladder, SceneError> {
     let info = scene.info();
-    // Validates the integrator for this scene.
-    RunOptions {
+    // The integrator's plan for this scene, validated once; rungs change only its step.
+    let base = RunOptions {
         integrator: Some(integrator.to_string()),
         t_end: Some(config.t_end),
         ..RunOptions::default()
     }
     .resolve(info)?;
-    let method = registry::find(integrator)?;
+    let method = base.method;
     let order = match method.order {
         Order::Finite(p) => Some(p),
         Order::Exact => None,
@@ -425,7 +432,10 @@ pub fn ladder(
     };
     let t_end = config.t_end;
     let run = |control: StepControl, out: &mut Ladder| -> Option<Rung> {
-        match rung(scene, params, integrator, control, t_end, reference) {
+        match base
+            .with_step(control)
+            .and_then(|plan| rung(scene, params, &plan, reference))
+        {
             Ok(r) => Some(r),
             Err(e) => {
                 out.failures.push(FailedRung {
@@ -463,8 +473,8 @@ pub fn ladder(
         // Coarsen until the error exceeds max_error (or the run fails, or one step is left):
         // untimed probes of the error only; the ladder proper starts at the last of them.
         let probe_error = |n: f64| {
-            let quiet = options(integrator, control_at(0, n), t_end, Observe::Ends);
-            final_state(scene, params, &quiet)
+            base.with_step(control_at(0, n))
+                .and_then(|p| final_state(scene, params, &p.observing(Observe::Ends)))
                 .ok()
                 .map(|(s, _)| state_error(info, &s, reference))
         };
@@ -638,9 +648,8 @@ pub struct LongRun {
 /// Lie-group methods with a fixed step (not the exact flow).
 #[must_use]
 pub fn long_run_methods(info: &SceneInfo) -> Vec<&'static str> {
-    info.integrators
-        .iter()
-        .copied()
+    info.integrators()
+        .into_iter()
         .filter(|name| {
             registry::find(name).is_ok_and(|m| {
                 !m.properties.adaptive
@@ -663,7 +672,7 @@ pub fn cost_per_second(
     control: StepControl,
     t_probe: f64,
 ) -> Result<f64, SceneError> {
-    let quiet = options(integrator, control, t_probe, Observe::Ends);
+    let quiet = plan(scene.info(), integrator, control, t_probe, Observe::Ends)?;
     let mut times = Vec::with_capacity(3);
     for _ in 0..3 {
         let start = Instant::now();
@@ -728,13 +737,15 @@ pub fn long_runs(
         .map(|(integrator, control)| {
             let mut history = EnergyHistory::new(first, t_end, bins, column);
             let start = Instant::now();
-            let result = scene
-                .simulate(
-                    params,
-                    &options(integrator, *control, t_end, Observe::EveryStep),
-                    &mut history,
-                )
-                .map_err(|e| e.to_string());
+            let result = plan(
+                scene.info(),
+                integrator,
+                *control,
+                t_end,
+                Observe::EveryStep,
+            )
+            .and_then(|p| scene.simulate(params, &p, &mut history))
+            .map_err(|e| e.to_string());
             LongRun {
                 integrator: integrator.clone(),
                 control: *control,

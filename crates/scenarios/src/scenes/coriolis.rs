@@ -18,13 +18,13 @@
 use std::f64::consts::FRAC_PI_2;
 
 use nalgebra::{RealField, SVector, Vector3};
-use tumble_integrators::{Action, Direction, Event, Ode};
+use tumble_integrators::{Action, Direction, Event, Ode, ProblemKind};
 use tumble_kinematics::frames::{EARTH_ANGULAR_SPEED, RotatingFrame, earth_rotation_enu};
 
 use crate::error::SceneError;
 use crate::lagrangian::Lagrangian;
 use crate::params::{Domain, ParamSpec, Params};
-use crate::scene::{Recorder, RunOptions, RunSummary, Scene, SceneInfo, run_vector};
+use crate::scene::{Recorder, RunPlan, RunSummary, Scene, SceneInfo, run_vector};
 
 /// The drop in the rotating frame.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -120,7 +120,8 @@ pub static CORIOLIS_DROP: SceneInfo = SceneInfo {
     parameters: &SPECS,
     conserved: &["Jacobi integral 1/2 |v|^2 + g z - 1/2 |omega x r|^2 (per unit mass)"],
     oracle: "lands x = omega sin(colatitude) (2h)^(3/2) / (3 sqrt(g)) east: 2.2 cm from 100 m at the equator",
-    integrators: &["rk4", "dp5", "dop853"],
+    problems: &[ProblemKind::Ode],
+    needs_dense_output: true,
     default_integrator: "dop853",
     default_step: 1e-3,
     default_t_end: 60.0,
@@ -140,11 +141,10 @@ impl Scene for CoriolisDropScene {
     fn simulate(
         &self,
         params: &Params,
-        options: &RunOptions,
+        plan: &RunPlan,
         recorder: &mut dyn Recorder,
     ) -> Result<RunSummary, SceneError> {
         let info = self.info();
-        let resolved = options.resolve(info)?;
         let model = CoriolisDrop::new(
             params.get("omega_earth")?,
             params.get("colatitude")?,
@@ -160,7 +160,7 @@ impl Scene for CoriolisDropScene {
         run_vector(
             &model,
             y0,
-            &resolved,
+            plan,
             info.columns().len(),
             7,
             |t, y, out| {

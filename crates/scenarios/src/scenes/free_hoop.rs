@@ -33,20 +33,20 @@
 use std::f64::consts::FRAC_PI_2;
 
 use nalgebra::{Matrix3, SMatrix, SVector, Vector3};
-use tumble_integrators::Ode;
 use tumble_integrators::rigid::{
-    CoupledLagrangian, CoupledLgvi, CoupledState, CoupledVectorField, KineticBlocks,
-    LieVectorField, Scalar, coupled_energy, coupled_state_from_velocities, coupled_velocities,
+    CoupledLagrangian, CoupledState, CoupledVectorField, KineticBlocks, LieVectorField, Scalar,
+    coupled_energy, coupled_state_from_velocities, coupled_velocities,
 };
+use tumble_integrators::{Ode, ProblemKind};
 use tumble_kinematics::EulerConvention;
 use tumble_kinematics::so3::hat;
 
 use super::hoop::{HoopParams, tilt_from_normal};
+use crate::dispatch;
 use crate::error::SceneError;
 use crate::params::{Domain, ParamSpec, Params};
 use crate::scene::{
-    Recorder, Resolved, RowObserver, RunOptions, RunSummary, Scene, SceneInfo, StepControl,
-    continuous_quaternion, run_vector,
+    Recorder, RowObserver, RunPlan, RunSummary, Scene, SceneInfo, continuous_quaternion, run_vector,
 };
 
 /// The free hoop on SO(3) × ℝ.
@@ -280,11 +280,6 @@ static SPECS: [ParamSpec; 8] = [
     },
 ];
 
-/// Integrators that run the free hoop.
-pub const FREE_HOOP_INTEGRATORS: &[&str] = &[
-    "lgvi", "rk4", "dp5", "dop853", "gauss2", "gauss4", "gauss6", "gauss8", "gauss10", "gauss12",
-];
-
 /// The `free-hoop` scene.
 pub static FREE_HOOP: SceneInfo = SceneInfo {
     name: "free-hoop",
@@ -293,7 +288,8 @@ pub static FREE_HOOP: SceneInfo = SceneInfo {
     parameters: &SPECS,
     conserved: &["energy", "Lz", "all of L when g = 0"],
     oracle: "energy and Lz conserved (all of L when g = 0); agrees with the Euler-angle twin away from theta = 0, pi",
-    integrators: FREE_HOOP_INTEGRATORS,
+    problems: &[ProblemKind::CoupledRigidBody, ProblemKind::Ode],
+    needs_dense_output: false,
     default_integrator: "lgvi",
     default_step: 1e-3,
     default_t_end: 10.0,
@@ -328,26 +324,18 @@ impl FreeHoopScene {
     }
 }
 
-/// Runs the free hoop with the coupled LGVI at a fixed step.
-fn run_lgvi(
+/// Runs the free hoop on SO(3) × ℝ with the plan's method (the coupled LGVI).
+fn run_coupled(
     model: &FreeHoop,
     s0: CoupledState<1>,
-    resolved: &Resolved,
+    plan: &RunPlan,
     recorder: &mut dyn Recorder,
 ) -> Result<RunSummary, SceneError> {
-    let StepControl::Fixed(h) = resolved.step else {
-        return Err(SceneError::InvalidOption {
-            option: "tol",
-            value: f64::NAN,
-            reason: "`lgvi` has a fixed step: give a step instead".into(),
-        });
-    };
     let mut state = s0;
-    let mut stepper = CoupledLgvi::<1>::new();
     let mut observer = RowObserver::new(
         FREE_HOOP.columns().len(),
         ENERGY_COLUMN,
-        resolved.every,
+        plan.every,
         {
             let mut previous = None;
             move |t, s: &CoupledState<1>, out: &mut [f64]| {
@@ -356,10 +344,8 @@ fn run_lgvi(
         },
         recorder,
     );
-    let report = resolved
-        .driver()?
-        .run_fixed(&mut stepper, model, &mut state, h, &mut observer)?;
-    Ok(observer.summary(report.t, report.steps, report.steps))
+    let outcome = dispatch::run_coupled(model, &mut state, plan, &mut observer)?;
+    Ok(observer.summary(outcome.t, outcome.steps, outcome.evaluations))
 }
 
 impl Scene for FreeHoopScene {
@@ -370,20 +356,19 @@ impl Scene for FreeHoopScene {
     fn simulate(
         &self,
         params: &Params,
-        options: &RunOptions,
+        plan: &RunPlan,
         recorder: &mut dyn Recorder,
     ) -> Result<RunSummary, SceneError> {
         let info = self.info();
-        let resolved = options.resolve(info)?;
         let (model, s0) = Self::model(params)?;
-        if resolved.integrator == "lgvi" {
-            return run_lgvi(&model, s0, &resolved, recorder);
+        if plan.kind == ProblemKind::CoupledRigidBody {
+            return run_coupled(&model, s0, plan, recorder);
         }
         let flat = FlatFreeHoop::new(model)?;
         run_vector(
             &flat,
             flatten(&s0),
-            &resolved,
+            plan,
             info.columns().len(),
             ENERGY_COLUMN,
             {

@@ -33,15 +33,13 @@
 use std::f64::consts::FRAC_PI_2;
 
 use nalgebra::{RealField, SVector, Vector3};
-use tumble_integrators::{Action, Direction, Event, Ode};
+use tumble_integrators::{Action, Direction, Event, Ode, ProblemKind};
 use tumble_kinematics::EulerConvention;
 
 use crate::error::{ModelError, SceneError, finite, non_negative, positive};
 use crate::lagrangian::Lagrangian;
 use crate::params::{Domain, ParamSpec, Params};
-use crate::scene::{
-    Recorder, RunOptions, RunSummary, Scene, SceneInfo, VECTOR_INTEGRATORS, run_vector,
-};
+use crate::scene::{Recorder, RunPlan, RunSummary, Scene, SceneInfo, run_vector};
 
 /// Parameters shared by the hoop scenes (SI units).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -389,7 +387,8 @@ pub static DRIVEN_HOOP: SceneInfo = SceneInfo {
     conserved: &["Jacobi integral (energy in the rotating frame)"],
     oracle: "alpha'' = (omega^2 cos alpha - g/a) sin alpha; cos alpha* = g/(a omega^2); \
              small oscillations Omega^2 = g/a - omega^2 (bottom), omega^2 - g^2/(a^2 omega^2) (alpha*)",
-    integrators: VECTOR_INTEGRATORS,
+    problems: &[ProblemKind::Ode],
+    needs_dense_output: false,
     default_integrator: "gauss8",
     default_step: 0.01,
     default_t_end: 10.0,
@@ -409,11 +408,10 @@ impl Scene for DrivenHoopScene {
     fn simulate(
         &self,
         params: &Params,
-        options: &RunOptions,
+        plan: &RunPlan,
         recorder: &mut dyn Recorder,
     ) -> Result<RunSummary, SceneError> {
         let info = self.info();
-        let resolved = options.resolve(info)?;
         let scene = DrivenHoop::new(hoop_params(params)?, params.get("omega")?)?;
         let y0 = SVector::<f64, 2>::new(params.get("alpha0")?, params.get("alpha_dot0")?);
         let el = crate::lagrangian::EulerLagrange::new(scene);
@@ -421,7 +419,7 @@ impl Scene for DrivenHoopScene {
         run_vector(
             &scene,
             y0,
-            &resolved,
+            plan,
             columns,
             3,
             |t, y, out| {
@@ -487,7 +485,8 @@ pub static SPINNING_HOOP: SceneInfo = SceneInfo {
     parameters: &SPINNING_SPECS,
     conserved: &["energy", "Lz = (M a^2/2 + m a^2 sin^2 alpha) phi_dot"],
     oracle: "M=1, a=0.4, m=0.2, phi_dot=5 with the bead at the top gives phi_dot = 25/6 at 45 deg from the top",
-    integrators: VECTOR_INTEGRATORS,
+    problems: &[ProblemKind::Ode],
+    needs_dense_output: false,
     default_integrator: "gauss8",
     default_step: 0.01,
     default_t_end: 10.0,
@@ -507,11 +506,10 @@ impl Scene for SpinningHoopScene {
     fn simulate(
         &self,
         params: &Params,
-        options: &RunOptions,
+        plan: &RunPlan,
         recorder: &mut dyn Recorder,
     ) -> Result<RunSummary, SceneError> {
         let info = self.info();
-        let resolved = options.resolve(info)?;
         let scene = SpinningHoop {
             hoop: hoop_params(params)?,
         };
@@ -525,7 +523,7 @@ impl Scene for SpinningHoopScene {
         run_vector(
             &scene,
             y0,
-            &resolved,
+            plan,
             columns,
             5,
             |t, y, out| {

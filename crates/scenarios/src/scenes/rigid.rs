@@ -32,19 +32,17 @@
 
 use nalgebra::{Matrix3, Rotation3, SVector, Vector3};
 use tumble_inertia::{MassSpec, THandle};
-use tumble_integrators::Ode;
 use tumble_integrators::rigid::{
-    Dmv, EulerEquations, ExactFlow, ExactSplitting, ExactStepper, FreeRigidBody, GroupState,
-    HeavyTop, Lgvi, LieVectorField, PrincipalAxisSplitting, RigidBody, RigidBodyState, cg3, rkmk4,
-    split4, split6, split8,
+    EulerEquations, ExactFlow, FreeRigidBody, HeavyTop, LieVectorField, RigidBody, RigidBodyState,
 };
+use tumble_integrators::{Ode, ProblemKind};
 use tumble_kinematics::so3::{exp, hat};
 
+use crate::dispatch;
 use crate::error::SceneError;
 use crate::params::{Domain, ParamSpec, Params};
 use crate::scene::{
-    Recorder, Resolved, RowObserver, RunOptions, RunSummary, Scene, SceneInfo, StepControl,
-    VECTOR_INTEGRATORS, continuous_quaternion, run_vector,
+    Recorder, RowObserver, RunPlan, RunSummary, Scene, SceneInfo, continuous_quaternion, run_vector,
 };
 
 /// Flattened state `(R column-major, m)`.
@@ -124,15 +122,15 @@ fn write_row<B: RigidBody>(
 /// Column of the energy in a row.
 const ENERGY_COLUMN: usize = 8;
 
-/// Runs a rigid body with any applicable integrator; `free` is the same body as a
-/// [`FreeRigidBody`] when it is torque-free (it enables `dmv` and `exact`).
+/// Runs a rigid body with the plan's method; `free` is the same body as a [`FreeRigidBody`]
+/// when it is torque-free (the scene then offers [`ProblemKind::FreeRigidBody`]).
 fn run_rigid<B: RigidBody + Copy>(
     info: &'static SceneInfo,
     body: B,
     free: Option<FreeRigidBody>,
     s0: RigidBodyState,
     exact: Option<ExactFlow>,
-    resolved: &Resolved,
+    plan: &RunPlan,
     recorder: &mut dyn Recorder,
 ) -> Result<RunSummary, SceneError> {
     let columns = info.columns().len();
@@ -140,12 +138,11 @@ fn run_rigid<B: RigidBody + Copy>(
     let mut row = move |t: f64, s: &RigidBodyState, out: &mut [f64]| {
         write_row(&body, exact.as_ref(), t, s, &mut previous, out);
     };
-    let name = resolved.integrator.as_str();
-    if VECTOR_INTEGRATORS.contains(&name) {
+    if plan.kind == ProblemKind::Ode {
         return run_vector(
             &FlatRigidBody(body),
             flatten(&s0),
-            resolved,
+            plan,
             columns,
             ENERGY_COLUMN,
             |t, y, out| row(t, &unflatten(y), out),
@@ -153,104 +150,25 @@ fn run_rigid<B: RigidBody + Copy>(
             recorder,
         );
     }
-    let StepControl::Fixed(h) = resolved.step else {
-        return Err(SceneError::InvalidOption {
-            option: "tol",
-            value: f64::NAN,
-            reason: format!("`{name}` has a fixed step: give a step instead"),
-        });
-    };
-    let driver = resolved.driver()?;
-    let mut observer = RowObserver::new(columns, ENERGY_COLUMN, resolved.every, row, recorder);
+    let mut observer = RowObserver::new(columns, ENERGY_COLUMN, plan.every, row, recorder);
     let mut state = s0;
-    macro_rules! group {
-        ($stepper:expr) => {{
-            let mut stepper = $stepper;
-            let mut g = GroupState {
-                rotation: s0.rotation,
-                vector: s0.momentum,
-            };
-            let mut group_observer = GroupRows(&mut observer);
-            let report = driver.run_fixed(
-                &mut stepper,
-                &EulerEquations(body),
-                &mut g,
-                h,
-                &mut group_observer,
-            )?;
-            (report.t, report.steps)
-        }};
-    }
-    macro_rules! on {
-        ($problem:expr, $stepper:expr) => {{
-            let mut stepper = $stepper;
-            let report = driver.run_fixed(&mut stepper, $problem, &mut state, h, &mut observer)?;
-            (report.t, report.steps)
-        }};
-    }
-    let unsupported = || SceneError::UnsupportedIntegrator {
-        scene: info.name.to_string(),
-        name: name.to_string(),
-        applicable: info.integrators.join(", "),
-    };
-    let (t, steps) = match name {
-        "lgvi" => on!(&body, Lgvi::new()),
-        "split2" => on!(&body, PrincipalAxisSplitting::new()),
-        "split4" => on!(&body, split4()),
-        "split6" => on!(&body, split6()),
-        "split8" => on!(&body, split8()),
-        "split-exact2" => on!(&body, ExactSplitting::new()),
-        "dmv" => on!(&free.ok_or_else(unsupported)?, Dmv::new()),
-        "exact" => on!(&free.ok_or_else(unsupported)?, ExactStepper::new()),
-        "rkmk4" => group!(rkmk4::<3>()),
-        "cg3" => group!(cg3::<3>()),
-        _ => return Err(unsupported()),
-    };
-    Ok(observer.summary(t, steps, steps))
+    let outcome = dispatch::run_rigid_body(&body, free.as_ref(), &mut state, plan, &mut observer)?;
+    Ok(observer.summary(outcome.t, outcome.steps, outcome.evaluations))
 }
 
-/// Adapts a row observer of rigid-body states to the Lie-group methods' `GroupState<3>`.
-struct GroupRows<'o, O>(&'o mut O);
-
-impl<O: tumble_integrators::Observer<RigidBodyState>> tumble_integrators::Observer<GroupState<3>>
-    for GroupRows<'_, O>
-{
-    fn observe(&mut self, t: f64, state: &GroupState<3>) -> tumble_integrators::Flow {
-        self.0.observe(
-            t,
-            &RigidBodyState {
-                rotation: state.rotation,
-                momentum: state.vector,
-            },
-        )
-    }
-}
-
-/// Integrators of torque-free bodies.
-pub const FREE_BODY_INTEGRATORS: &[&str] = &[
-    "lgvi", "split2", "split4", "split6", "split8", "dmv", "exact", "rkmk4", "cg3", "rk4", "dp5",
-    "dop853", "gauss2", "gauss4", "gauss6", "gauss8", "gauss10", "gauss12",
+/// A torque-free body's kinds of problem, most specific first.
+const FREE_BODY_PROBLEMS: &[ProblemKind] = &[
+    ProblemKind::FreeRigidBody,
+    ProblemKind::RigidBody,
+    ProblemKind::LieVectorField,
+    ProblemKind::Ode,
 ];
 
-/// Integrators of the heavy top.
-pub const HEAVY_TOP_INTEGRATORS: &[&str] = &[
-    "lgvi",
-    "split2",
-    "split4",
-    "split6",
-    "split8",
-    "split-exact2",
-    "rkmk4",
-    "cg3",
-    "rk4",
-    "dp5",
-    "dop853",
-    "gauss2",
-    "gauss4",
-    "gauss6",
-    "gauss8",
-    "gauss10",
-    "gauss12",
+/// The heavy top's kinds of problem.
+const HEAVY_TOP_PROBLEMS: &[ProblemKind] = &[
+    ProblemKind::RigidBody,
+    ProblemKind::LieVectorField,
+    ProblemKind::Ode,
 ];
 
 const fn spec(
@@ -322,7 +240,8 @@ pub static FREE_BODY: SceneInfo = SceneInfo {
     parameters: &FREE_BODY_SPECS,
     conserved: &["energy", "L (vector)", "|m| (Casimir)"],
     oracle: "exact solution by Jacobi elliptic functions and an elliptic integral of the third kind (column exact_err)",
-    integrators: FREE_BODY_INTEGRATORS,
+    problems: FREE_BODY_PROBLEMS,
+    needs_dense_output: false,
     default_integrator: "split4",
     default_step: 0.01,
     default_t_end: 20.0,
@@ -370,11 +289,10 @@ impl Scene for FreeBodyScene {
     fn simulate(
         &self,
         params: &Params,
-        options: &RunOptions,
+        plan: &RunPlan,
         recorder: &mut dyn Recorder,
     ) -> Result<RunSummary, SceneError> {
         let info = self.info();
-        let resolved = options.resolve(info)?;
         let moments = Vector3::new(params.get("I1")?, params.get("I2")?, params.get("I3")?);
         let body = inertia_body(moments)?;
         let m0 = Vector3::new(params.get("m1")?, params.get("m2")?, params.get("m3")?);
@@ -382,7 +300,7 @@ impl Scene for FreeBodyScene {
         let r0 = Rotation3::identity();
         let exact = body.flow(&r0, &m0)?;
         let s0 = RigidBodyState::new(&r0, m0);
-        run_rigid(info, body, Some(body), s0, Some(exact), &resolved, recorder)
+        run_rigid(info, body, Some(body), s0, Some(exact), plan, recorder)
     }
 }
 
@@ -418,7 +336,8 @@ pub static DZHANIBEKOV: SceneInfo = SceneInfo {
     parameters: &DZHANIBEKOV_SPECS,
     conserved: &["energy", "L (vector)", "|m| (Casimir)"],
     oracle: "flip period = half the period of the exact solution (4K(k)/lambda)",
-    integrators: FREE_BODY_INTEGRATORS,
+    problems: FREE_BODY_PROBLEMS,
+    needs_dense_output: false,
     default_integrator: "split4",
     default_step: 1e-3,
     default_t_end: 10.0,
@@ -456,15 +375,14 @@ impl Scene for DzhanibekovScene {
     fn simulate(
         &self,
         params: &Params,
-        options: &RunOptions,
+        plan: &RunPlan,
         recorder: &mut dyn Recorder,
     ) -> Result<RunSummary, SceneError> {
         let info = self.info();
-        let resolved = options.resolve(info)?;
         let (body, s0) = Self::body_and_state(params)?;
         check_momentum(info.name, &s0.momentum)?;
         let exact = body.flow(&Rotation3::identity(), &s0.momentum)?;
-        run_rigid(info, body, Some(body), s0, Some(exact), &resolved, recorder)
+        run_rigid(info, body, Some(body), s0, Some(exact), plan, recorder)
     }
 }
 
@@ -521,7 +439,8 @@ pub static HEAVY_TOP: SceneInfo = SceneInfo {
     parameters: &HEAVY_TOP_SPECS,
     conserved: &["energy", "Lz", "L . e3 (symmetric top)"],
     oracle: "energy H = 1269.975 conserved; Lz and the spin L . (R e3) conserved",
-    integrators: HEAVY_TOP_INTEGRATORS,
+    problems: HEAVY_TOP_PROBLEMS,
+    needs_dense_output: false,
     default_integrator: "lgvi",
     default_step: 1e-3,
     default_t_end: 10.0,
@@ -557,12 +476,11 @@ impl Scene for HeavyTopScene {
     fn simulate(
         &self,
         params: &Params,
-        options: &RunOptions,
+        plan: &RunPlan,
         recorder: &mut dyn Recorder,
     ) -> Result<RunSummary, SceneError> {
         let info = self.info();
-        let resolved = options.resolve(info)?;
         let (top, s0) = Self::top_and_state(params)?;
-        run_rigid(info, top, None, s0, None, &resolved, recorder)
+        run_rigid(info, top, None, s0, None, plan, recorder)
     }
 }

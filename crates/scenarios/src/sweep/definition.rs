@@ -17,7 +17,7 @@ use toml::Spanned;
 use super::metrics::Metric;
 use crate::error::SceneError;
 use crate::params::Params;
-use crate::scene::{RunOptions, Scene, StepControl};
+use crate::scene::{RunOptions, RunPlan, Scene, StepControl};
 use crate::scene_file::{Location, describe, excerpt};
 use crate::scenes;
 
@@ -347,12 +347,9 @@ pub struct SweepDefinition {
     /// The fixed parameters (the scene's defaults with the file's and overrides' values); the
     /// swept ones are set at every point.
     pub params: Params,
-    /// Integrator.
-    pub integrator: String,
-    /// Fixed step or tolerance.
-    pub step: StepControl,
-    /// Horizon (s).
-    pub t_end: f64,
+    /// The validated run of every point (method, step or tolerance, horizon; every step
+    /// observed, so the metrics see every step).
+    pub plan: RunPlan,
     /// The axes, in file order.
     pub axes: Vec<Axis>,
     /// Grid or random samples.
@@ -369,9 +366,7 @@ impl fmt::Debug for SweepDefinition {
             .field("origin", &self.origin)
             .field("scene", &self.scene.info().name)
             .field("params", &self.params)
-            .field("integrator", &self.integrator)
-            .field("step", &self.step)
-            .field("t_end", &self.t_end)
+            .field("plan", &self.plan)
             .field("axes", &self.axes)
             .field("sampling", &self.sampling)
             .field("metrics", &self.metrics)
@@ -471,18 +466,6 @@ impl SweepDefinition {
         }
     }
 
-    /// The run options of every point (record every step: metrics see every step).
-    #[must_use]
-    pub fn run_options(&self) -> RunOptions {
-        RunOptions {
-            integrator: Some(self.integrator.clone()),
-            step: Some(self.step),
-            t_end: Some(self.t_end),
-            every: Some(1),
-            observe: crate::scene::Observe::EveryStep,
-        }
-    }
-
     /// The header of `results.csv`: `index`, the axes, the metrics, `status`, `reason`.
     #[must_use]
     pub fn columns(&self) -> Vec<String> {
@@ -516,8 +499,8 @@ impl SweepDefinition {
             }
         }
         let _ = writeln!(s, "\n[run]");
-        let _ = writeln!(s, "integrator = {:?}", self.integrator);
-        match self.step {
+        let _ = writeln!(s, "integrator = {:?}", self.plan.integrator());
+        match self.plan.step {
             StepControl::Fixed(h) => {
                 let _ = writeln!(s, "dt = {}", float(h));
             }
@@ -525,7 +508,7 @@ impl SweepDefinition {
                 let _ = writeln!(s, "tol = {}", float(tol));
             }
         }
-        let _ = writeln!(s, "t_end = {}", float(self.t_end));
+        let _ = writeln!(s, "t_end = {}", float(self.plan.t_end));
         for axis in &self.axes {
             let _ = writeln!(s, "\n[[axes]]");
             let _ = writeln!(s, "parameter = {:?}", axis.parameter);
@@ -1055,7 +1038,7 @@ impl Draft {
             every: Some(1),
             observe: crate::scene::Observe::EveryStep,
         };
-        let resolved = options.resolve(info).map_err(|error| {
+        let plan = options.resolve(info).map_err(|error| {
             let (key, at) = match &error {
                 SceneError::UnsupportedIntegrator { .. } => (
                     "run.integrator",
@@ -1158,9 +1141,7 @@ impl Draft {
             origin: self.origin.clone(),
             scene,
             params,
-            integrator: resolved.integrator,
-            step: resolved.step,
-            t_end: resolved.t_end,
+            plan,
             axes,
             sampling: match random {
                 Some((samples, seed)) => Sampling::Random { samples, seed },

@@ -140,15 +140,15 @@ fn metrics_of(def: &SweepDefinition, values: &[f64]) -> Result<Vec<Option<f64>>,
         .map_err(|e| e.to_string())?;
     let summary = def
         .scene
-        .simulate(&params, &def.run_options(), &mut recorder)
+        .simulate(&params, &def.plan, &mut recorder)
         .map_err(|e| e.to_string())?;
     if let Some(failure) = recorder.failure() {
         return Err(failure.to_string());
     }
-    if !(summary.t >= def.t_end) {
+    if !(summary.t >= def.plan.t_end) {
         return Err(format!(
             "the run stopped at t = {} before the horizon t_end = {}",
-            summary.t, def.t_end
+            summary.t, def.plan.t_end
         ));
     }
     Ok(recorder.finish(&def.metrics, summary.max_energy_rel_err))

@@ -199,7 +199,7 @@ fn overrides_replace_keys_and_are_validated() {
         ],
     )
     .unwrap();
-    assert_eq!(def.step, StepControl::Fixed(0.005));
+    assert_eq!(def.plan.step, StepControl::Fixed(0.005));
     assert_eq!(def.params.get("M").unwrap(), 2.0);
     assert_eq!(def.points(), 10);
     for (o, needle) in [
@@ -356,9 +356,7 @@ fn hoop_metrics_agree_with_the_trajectory() {
     params.set("omega0", 5.0).unwrap();
     params.set("alpha0", 2.0).unwrap();
     let mut rows = Rows::default();
-    let summary = scene
-        .simulate(&params, &def.run_options(), &mut rows)
-        .unwrap();
+    let summary = scene.simulate(&params, &def.plan, &mut rows).unwrap();
     let tilt = scene
         .info()
         .columns()
@@ -656,7 +654,7 @@ fn shards_partition_the_points() {
 fn tilt_map_step_halving(indices: &[u64]) -> (f64, u64) {
     use rayon::prelude::*;
     let def = SweepDefinition::tilt_map(&[]).unwrap();
-    let StepControl::Fixed(h) = def.step else {
+    let StepControl::Fixed(h) = def.plan.step else {
         panic!("the map has a fixed step")
     };
     let half = SweepDefinition::tilt_map(&[set("run.dt", h / 2.0)]).unwrap();

@@ -16,7 +16,7 @@ fn coriolis_drop_lands_2_2_cm_east() {
     let params = scene.info().default_params();
     let mut rows = Rows::default();
     scene
-        .simulate(&params, &RunOptions::default(), &mut rows)
+        .run(&params, &RunOptions::default(), &mut rows)
         .unwrap();
     let last = rows.0.last().unwrap();
     let closed = drop_deflection_east(

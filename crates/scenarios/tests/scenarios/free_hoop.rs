@@ -192,7 +192,7 @@ fn free_hoop_scene_runs_with_lgvi_and_with_gauss() {
             t_end: Some(6.0),
             ..Default::default()
         };
-        let summary = scene.simulate(&params, &opts, &mut rows).unwrap();
+        let summary = scene.run(&params, &opts, &mut rows).unwrap();
         let cols = scene.info().columns();
         assert_eq!(cols.len(), rows.0[0].len());
         let lz = cols.iter().position(|c| c == "Lz").unwrap();

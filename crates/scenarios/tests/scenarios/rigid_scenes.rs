@@ -5,7 +5,7 @@ use nalgebra::{Rotation3, Vector3};
 use tumble_inertia::{MassSpec, THandle};
 use tumble_scenarios::scene::Rows;
 use tumble_scenarios::scenes::find;
-use tumble_scenarios::scenes::rigid::{DzhanibekovScene, FREE_BODY_INTEGRATORS, HeavyTopScene};
+use tumble_scenarios::scenes::rigid::{DzhanibekovScene, HeavyTopScene};
 use tumble_scenarios::{RunOptions, StepControl};
 
 fn column(name: &str, scene: &str) -> usize {
@@ -23,8 +23,12 @@ fn free_body_runs_with_every_applicable_integrator_close_to_the_exact_solution()
     let scene = find("free-body").unwrap();
     let params = scene.info().default_params();
     let err = column("exact_err", "free-body");
-    for &name in FREE_BODY_INTEGRATORS {
-        let step = if matches!(name, "dp5" | "dop853") {
+    for name in scene.info().integrators() {
+        let adaptive = tumble_integrators::registry::find(name)
+            .unwrap()
+            .properties
+            .adaptive;
+        let step = if adaptive {
             StepControl::Tolerance(1e-10)
         } else {
             StepControl::Fixed(1e-3)
@@ -37,7 +41,7 @@ fn free_body_runs_with_every_applicable_integrator_close_to_the_exact_solution()
         };
         let mut rows = Rows::default();
         scene
-            .simulate(&params, &opts, &mut rows)
+            .run(&params, &opts, &mut rows)
             .unwrap_or_else(|e| panic!("{name}: {e}"));
         let worst = rows.0.iter().map(|r| r[err]).fold(0.0f64, f64::max);
         // Every method is at least second order: at h = 1e-3 over 5 s the error is below 1e-5;
@@ -72,7 +76,7 @@ fn dzhanibekov_handle_flips_every_half_period_of_the_exact_solution() {
         ..Default::default()
     };
     let mut rows = Rows::default();
-    scene.simulate(&params, &opts, &mut rows).unwrap();
+    scene.run(&params, &opts, &mut rows).unwrap();
     let w = column("omega_x", "dzhanibekov");
     let spin = |r: &Vec<f64>| Vector3::new(r[w], r[w + 1], r[w + 2]).dot(&e2);
     let mut flips = Vec::new();
@@ -111,7 +115,7 @@ fn heavy_top_simo_wong_energy_is_1269_975_and_stays_bounded() {
             ..Default::default()
         };
         let mut rows = Rows::default();
-        let summary = scene.simulate(&params, &opts, &mut rows).unwrap();
+        let summary = scene.run(&params, &opts, &mut rows).unwrap();
         let lz = column("Lz", "heavy-top");
         let lz_drift = rows
             .0
@@ -143,7 +147,7 @@ fn rigid_scenes_reject_bad_parameters() {
     params.set("I3", 10.0).unwrap(); // violates I1 + I2 ≥ I3
     assert!(
         scene
-            .simulate(&params, &RunOptions::default(), &mut Rows::default())
+            .run(&params, &RunOptions::default(), &mut Rows::default())
             .is_err()
     );
     let mut params = scene.info().default_params();
@@ -151,12 +155,12 @@ fn rigid_scenes_reject_bad_parameters() {
         params.set(k, 0.0).unwrap();
     }
     let err = scene
-        .simulate(&params, &RunOptions::default(), &mut Rows::default())
+        .run(&params, &RunOptions::default(), &mut Rows::default())
         .unwrap_err();
     assert!(err.to_string().contains("must not all be zero"), "{err}");
     let top = find("heavy-top").unwrap();
     let err = top
-        .simulate(
+        .run(
             &top.info().default_params(),
             &RunOptions {
                 integrator: Some("dmv".into()),

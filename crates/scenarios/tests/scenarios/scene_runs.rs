@@ -15,7 +15,7 @@ fn every_builtin_scene_runs_on_its_defaults_and_conserves_its_energy() {
             t_end: Some(2.0),
             ..RunOptions::default()
         };
-        let summary = scene.simulate(&params, &opts, &mut rows).unwrap();
+        let summary = scene.run(&params, &opts, &mut rows).unwrap();
         let columns = info.columns();
         assert_eq!(columns[0], "t");
         assert!(rows.0.iter().all(|r| r.len() == columns.len()));
@@ -50,7 +50,7 @@ fn every_n_steps_thins_the_rows() {
         step: Some(StepControl::Fixed(0.01)),
         ..RunOptions::default()
     };
-    scene.simulate(&params, &opts, &mut rows).unwrap();
+    scene.run(&params, &opts, &mut rows).unwrap();
     // Steps 0, 10, …, 100 (the observer also sees the final state once).
     assert!((11..=12).contains(&rows.0.len()), "{} rows", rows.0.len());
 }
@@ -59,8 +59,7 @@ fn every_n_steps_thins_the_rows() {
 fn bad_options_and_parameters_are_rejected_with_their_names() {
     let scene = find("spinning-hoop").unwrap();
     let mut params = scene.info().default_params();
-    let run =
-        |p: &tumble_scenarios::Params, o: RunOptions| scene.simulate(p, &o, &mut Rows::default());
+    let run = |p: &tumble_scenarios::Params, o: RunOptions| scene.run(p, &o, &mut Rows::default());
     for (opts, what) in [
         (
             RunOptions {
@@ -153,4 +152,69 @@ fn bad_options_and_parameters_are_rejected_with_their_names() {
         find("no-such-scene"),
         Err(SceneError::UnknownScene { .. })
     ));
+}
+
+/// Dispatch covers the registry: every method a scene derives from its problem kinds builds a
+/// stepper and runs the scene (20 steps at its default step, or a tolerance of 1e-8), conserving
+/// energy to the method's accuracy (1e-3 relative at this short horizon).
+#[test]
+fn every_scene_runs_every_integrator_it_lists() {
+    use tumble_integrators::registry;
+    for scene in builtin() {
+        let info = scene.info();
+        let params = info.default_params();
+        let integrators = info.integrators();
+        assert!(
+            integrators.contains(&info.default_integrator),
+            "{}",
+            info.name
+        );
+        for name in integrators {
+            let method = registry::find(name).unwrap();
+            let step = if method.properties.adaptive {
+                StepControl::Tolerance(1e-8)
+            } else {
+                StepControl::Fixed(info.default_step)
+            };
+            let opts = RunOptions {
+                integrator: Some(name.to_string()),
+                step: Some(step),
+                t_end: Some(20.0 * info.default_step),
+                ..RunOptions::default()
+            };
+            let summary = scene
+                .run(&params, &opts, &mut tumble_scenarios::scene::Discard)
+                .unwrap_or_else(|e| panic!("{} with {name}: {e}", info.name));
+            assert!(summary.steps >= 1, "{} with {name}", info.name);
+            assert!(
+                summary.max_energy_rel_err < 1e-3,
+                "{} with {name}: energy error {}",
+                info.name,
+                summary.max_energy_rel_err
+            );
+        }
+    }
+}
+
+/// A method that shares no problem kind with a scene is refused before any work, with the
+/// scene's applicable methods in the message.
+#[test]
+fn a_method_of_another_problem_kind_is_refused_with_the_applicable_ones() {
+    let scene = find("free-hoop").unwrap();
+    let opts = RunOptions {
+        integrator: Some("verlet".into()),
+        ..RunOptions::default()
+    };
+    let err = scene
+        .run(&scene.info().default_params(), &opts, &mut Rows::default())
+        .unwrap_err();
+    assert!(
+        matches!(err, SceneError::UnsupportedIntegrator { .. }),
+        "{err}"
+    );
+    assert!(err.to_string().contains("lgvi"), "{err}");
+    // The events of the Coriolis drop need dense output: Gauss–Legendre (none) is not listed.
+    let drop = find("coriolis-drop").unwrap().info();
+    assert!(!drop.runs("gauss8"));
+    assert!(drop.runs("dop853") && drop.runs("rk4"));
 }

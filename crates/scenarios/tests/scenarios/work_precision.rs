@@ -81,7 +81,7 @@ fn every_scene_runs_with_every_applicable_integrator() {
         let info = scene.info();
         let params = info.default_params();
         let reference = work_precision::reference(*scene, &params, 1.0).unwrap();
-        for integrator in info.integrators {
+        for integrator in info.integrators() {
             let ladder = work_precision::ladder(
                 *scene,
                 &params,

@@ -1,0 +1,281 @@
+//! Dispatch: from a validated [`RunPlan`] to a stepper on the scene's model.
+//!
+//! This is the one place where a method's registry name becomes a stepper type. Everything
+//! else asks the registry ([`tumble_integrators::registry`]) what a method *is* — adaptive,
+//! with dense output, which [`ProblemKind`]s it integrates — and a scene states which kinds its
+//! model offers ([`crate::SceneInfo::problems`]); the plan carries the kind chosen for the run
+//! ([`RunPlan::kind`]). Adding a method means a registry entry and an arm here for each kind it
+//! integrates; every scene offering one of those kinds can then run it, with no list to edit.
+//! A test runs every scene with every method it derives (`every_scene_runs_every_integrator_it_lists`),
+//! so a registry claim without an arm here fails.
+//!
+//! | kind | model | methods |
+//! |---|---|---|
+//! | [`ProblemKind::Ode`] | `y' = f(t, y)` on ℝⁿ (a flattened model) | explicit Runge–Kutta, Gauss–Legendre |
+//! | [`ProblemKind::RigidBody`] | [`RigidBody`] on SO(3) × ℝ³ | LGVI, principal-axis splittings, exact-flow splitting |
+//! | [`ProblemKind::FreeRigidBody`] | [`FreeRigidBody`] | discrete Moser–Veselov, the exact flow |
+//! | [`ProblemKind::LieVectorField`] | Euler's equations as a vector field on SO(3) × ℝ³ | RKMK, Crouch–Grossman |
+//! | [`ProblemKind::CoupledRigidBody`] | [`CoupledLagrangian`] on SO(3) × ℝⁿ | the coupled LGVI |
+
+use nalgebra::SVector;
+use tumble_integrators::rigid::{
+    CoupledLagrangian, CoupledLgvi, CoupledState, Dmv, EulerEquations, ExactSplitting,
+    ExactStepper, FreeRigidBody, GroupState, Lgvi, PrincipalAxisSplitting, RigidBody,
+    RigidBodyState, cg3, rkmk4, split4, split6, split8,
+};
+use tumble_integrators::{
+    Event, ExplicitRungeKutta, Flow, Observer, Ode, ProblemKind, Tolerances, gauss2, gauss4,
+    gauss6, gauss8, gauss10, gauss12,
+};
+
+use crate::error::SceneError;
+use crate::scene::{RunPlan, StepControl};
+
+/// How a dispatched run ended.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Outcome {
+    /// Time reached.
+    pub t: f64,
+    /// Accepted steps.
+    pub steps: u64,
+    /// Right-hand-side evaluations (steps, for methods without a right-hand side).
+    pub evaluations: u64,
+}
+
+/// The error for a plan whose method has no stepper for `kind` (a registry entry without its
+/// arm here; the dispatch test catches it).
+fn no_stepper(plan: &RunPlan, kind: &str) -> SceneError {
+    SceneError::UnsupportedIntegrator {
+        scene: String::new(),
+        name: plan.integrator().to_string(),
+        applicable: format!("(no stepper for a {kind} problem)"),
+    }
+}
+
+/// The fixed step of a plan (validation guarantees it for a non-adaptive method).
+fn fixed_step(plan: &RunPlan) -> Result<f64, SceneError> {
+    match plan.step {
+        StepControl::Fixed(h) => Ok(h),
+        StepControl::Tolerance(tol) => Err(SceneError::InvalidOption {
+            option: "tol",
+            value: tol,
+            reason: format!(
+                "`{}` has a fixed step: give a step instead",
+                plan.integrator()
+            ),
+        }),
+    }
+}
+
+/// Integrates a first-order system `y' = f(t, y)` ([`ProblemKind::Ode`]) from `y` over the
+/// plan's horizon, with `events` (located on dense output; a terminal event ends the run).
+///
+/// # Errors
+/// Integration failures; a method without dense output asked to locate events.
+pub fn run_ode<P, O, const S: usize>(
+    problem: &P,
+    y: &mut SVector<f64, S>,
+    plan: &RunPlan,
+    events: &mut [Event<'_, SVector<f64, S>>],
+    observer: &mut O,
+) -> Result<Outcome, SceneError>
+where
+    P: Ode<SVector<f64, S>>,
+    O: Observer<SVector<f64, S>>,
+{
+    let counted = tumble_integrators::Counted::new(ByRef(problem));
+    let driver = plan.driver()?;
+    let name = plan.integrator();
+    let report = match plan.step {
+        StepControl::Tolerance(tol) => {
+            let tolerances = Tolerances::new(tol, tol)?;
+            macro_rules! adaptive {
+                ($stepper:expr) => {{
+                    let mut stepper = $stepper;
+                    driver.run_adaptive(&mut stepper, &counted, y, &tolerances, events, observer)?
+                }};
+            }
+            match name {
+                "dp5" => adaptive!(ExplicitRungeKutta::dp5().stepper(y)),
+                "dop853" => adaptive!(ExplicitRungeKutta::dop853().stepper(y)),
+                _ => return Err(no_stepper(plan, "first-order ODE")),
+            }
+        }
+        StepControl::Fixed(h) => {
+            macro_rules! fixed {
+                ($stepper:expr) => {{
+                    let mut stepper = $stepper;
+                    if events.is_empty() {
+                        driver.run_fixed(&mut stepper, &counted, y, h, observer)?
+                    } else {
+                        driver.run_fixed_with_events(
+                            &mut stepper,
+                            &counted,
+                            y,
+                            h,
+                            events,
+                            observer,
+                        )?
+                    }
+                }};
+            }
+            macro_rules! fixed_without_dense_output {
+                ($stepper:expr) => {{
+                    if !events.is_empty() {
+                        return Err(SceneError::InvalidOption {
+                            option: "integrator",
+                            value: f64::NAN,
+                            reason: format!(
+                                "`{name}` has no dense output, which this run needs to locate \
+                                 its events"
+                            ),
+                        });
+                    }
+                    let mut stepper = $stepper;
+                    driver.run_fixed(&mut stepper, &counted, y, h, observer)?
+                }};
+            }
+            match name {
+                "rk4" => fixed!(ExplicitRungeKutta::rk4().stepper(y)),
+                "gauss2" => fixed_without_dense_output!(gauss2().stepper(y)),
+                "gauss4" => fixed_without_dense_output!(gauss4().stepper(y)),
+                "gauss6" => fixed_without_dense_output!(gauss6().stepper(y)),
+                "gauss8" => fixed_without_dense_output!(gauss8().stepper(y)),
+                "gauss10" => fixed_without_dense_output!(gauss10().stepper(y)),
+                "gauss12" => fixed_without_dense_output!(gauss12().stepper(y)),
+                _ => return Err(no_stepper(plan, "first-order ODE")),
+            }
+        }
+    };
+    Ok(Outcome {
+        t: report.t,
+        steps: report.steps,
+        evaluations: counted.evaluations().rhs,
+    })
+}
+
+/// Integrates a rigid body on SO(3) × ℝ³ ([`ProblemKind::RigidBody`],
+/// [`ProblemKind::LieVectorField`], and with `free` — the same body as a [`FreeRigidBody`] when
+/// it is torque-free — [`ProblemKind::FreeRigidBody`]) from `state` over the plan's horizon.
+///
+/// # Errors
+/// Integration failures.
+pub fn run_rigid_body<B, O>(
+    body: &B,
+    free: Option<&FreeRigidBody>,
+    state: &mut RigidBodyState,
+    plan: &RunPlan,
+    observer: &mut O,
+) -> Result<Outcome, SceneError>
+where
+    B: RigidBody + Copy,
+    O: Observer<RigidBodyState>,
+{
+    let h = fixed_step(plan)?;
+    let driver = plan.driver()?;
+    macro_rules! on {
+        ($problem:expr, $stepper:expr) => {{
+            let mut stepper = $stepper;
+            let report = driver.run_fixed(&mut stepper, $problem, state, h, observer)?;
+            (report.t, report.steps)
+        }};
+    }
+    macro_rules! group {
+        ($stepper:expr) => {{
+            let mut stepper = $stepper;
+            let mut g = GroupState {
+                rotation: state.rotation,
+                vector: state.momentum,
+            };
+            let report = driver.run_fixed(
+                &mut stepper,
+                &EulerEquations(*body),
+                &mut g,
+                h,
+                &mut GroupRows(observer),
+            )?;
+            *state = RigidBodyState {
+                rotation: g.rotation,
+                momentum: g.vector,
+            };
+            (report.t, report.steps)
+        }};
+    }
+    let (t, steps) = match (plan.kind, plan.integrator(), free) {
+        (ProblemKind::RigidBody, "lgvi", _) => on!(body, Lgvi::new()),
+        (ProblemKind::RigidBody, "split2", _) => on!(body, PrincipalAxisSplitting::new()),
+        (ProblemKind::RigidBody, "split4", _) => on!(body, split4()),
+        (ProblemKind::RigidBody, "split6", _) => on!(body, split6()),
+        (ProblemKind::RigidBody, "split8", _) => on!(body, split8()),
+        (ProblemKind::RigidBody, "split-exact2", _) => on!(body, ExactSplitting::new()),
+        (ProblemKind::FreeRigidBody, "dmv", Some(free)) => on!(free, Dmv::new()),
+        (ProblemKind::FreeRigidBody, "exact", Some(free)) => on!(free, ExactStepper::new()),
+        (ProblemKind::LieVectorField, "rkmk4", _) => group!(rkmk4::<3>()),
+        (ProblemKind::LieVectorField, "cg3", _) => group!(cg3::<3>()),
+        (kind, _, _) => return Err(no_stepper(plan, kind.name())),
+    };
+    Ok(Outcome {
+        t,
+        steps,
+        evaluations: steps,
+    })
+}
+
+/// Integrates a rigid body coupled to `N` coordinates ([`ProblemKind::CoupledRigidBody`]) from
+/// `state` over the plan's horizon.
+///
+/// # Errors
+/// Integration failures.
+pub fn run_coupled<L, O, const N: usize>(
+    model: &L,
+    state: &mut CoupledState<N>,
+    plan: &RunPlan,
+    observer: &mut O,
+) -> Result<Outcome, SceneError>
+where
+    L: CoupledLagrangian<N>,
+    O: Observer<CoupledState<N>>,
+{
+    let h = fixed_step(plan)?;
+    let driver = plan.driver()?;
+    let report = match (plan.kind, plan.integrator()) {
+        (ProblemKind::CoupledRigidBody, "lgvi") => {
+            let mut stepper = CoupledLgvi::<N>::new();
+            driver.run_fixed(&mut stepper, model, state, h, observer)?
+        }
+        (kind, _) => return Err(no_stepper(plan, kind.name())),
+    };
+    Ok(Outcome {
+        t: report.t,
+        steps: report.steps,
+        evaluations: report.steps,
+    })
+}
+
+/// Adapts an observer of rigid-body states to the Lie-group methods' `GroupState<3>`.
+struct GroupRows<'o, O>(&'o mut O);
+
+impl<O: Observer<RigidBodyState>> Observer<GroupState<3>> for GroupRows<'_, O> {
+    fn observe(&mut self, t: f64, state: &GroupState<3>) -> Flow {
+        self.0.observe(
+            t,
+            &RigidBodyState {
+                rotation: state.rotation,
+                momentum: state.vector,
+            },
+        )
+    }
+}
+
+/// A problem used through a reference (the integrators' traits are implemented for owned
+/// problems).
+struct ByRef<'a, P>(&'a P);
+
+impl<P: Ode<SVector<f64, S>>, const S: usize> Ode<SVector<f64, S>> for ByRef<'_, P> {
+    fn rhs(&self, t: f64, y: &SVector<f64, S>, dy: &mut SVector<f64, S>) {
+        self.0.rhs(t, y, dy);
+    }
+    fn jacobian(&self, t: f64, y: &SVector<f64, S>, jac: &mut [f64]) -> bool {
+        self.0.jacobian(t, y, jac)
+    }
+}
