@@ -1,4 +1,4 @@
-//! Sweep throughput: points per second of `tumble_scenarios::sweep::run` with 1 and 2 worker
+//! Sweep throughput: points per second of `tumble_studies::sweep::run` with 1 and 2 worker
 //! threads (the speedup is the ratio of the two throughputs criterion prints).
 //!
 //! The sweep is a slice of the built-in hoop-tilt map (`free-hoop`, gauss8, dt = 0.01, the
@@ -14,7 +14,7 @@
 use std::hint::black_box;
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
-use tumble_scenarios::sweep::{self, RunConfig, SweepDefinition};
+use tumble_studies::sweep::{self, RunConfig, SweepDefinition};
 
 /// The benchmark's sweep: the free hoop as in the tilt map, one spin, 96 bead angles.
 const SWEEP: &str = r#"

@@ -21,7 +21,7 @@
 //!     (`n` fixed steps of `t_end / n`). Peers run `t_end` at rtol = atol = tol from the
 //!     flattened initial state, with their default step control.
 //!   * The error is the project's work–precision metric
-//!     ([`tumble_scenarios::work_precision::state_error`]): `max |yᵢ − yᵢ,ref| / (1 + |yᵢ,ref|)`
+//!     ([`tumble_studies::work_precision::state_error`]): `max |yᵢ − yᵢ,ref| / (1 + |yᵢ,ref|)`
 //!     over the coordinates and rates the scene writes (quaternion `qw, qx, qy, qz` compared up
 //!     to sign, `alpha`, body `omega`, `alpha_dot`); a peer's final flat state is converted by
 //!     [`free_hoop::final_state`], the same row code the scene uses. The reference is
@@ -61,8 +61,8 @@ use tumble_scenarios::scene::Discard;
 use tumble_scenarios::scenes::free_hoop::{
     self, Flat, FlatFreeHoop, FreeHoop, FreeHoopScene, flatten,
 };
-use tumble_scenarios::work_precision::{self, FinalState, Reference, state_error};
 use tumble_scenarios::{Observe, Params, Scene, StepControl};
+use tumble_studies::work_precision::{self, FinalState, Reference, state_error};
 
 // ---------------------------------------------------------------------------------------------
 // scene-step

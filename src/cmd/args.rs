@@ -24,6 +24,26 @@ pub fn parse_angle(s: &str) -> Option<f64> {
     Some(c * PI / den)
 }
 
+/// Parses one `--set KEY=VALUE` (the value a number or an angle expression) into the trimmed
+/// key and the value; `example` completes the message of a malformed one (`omega0=5`).
+pub fn parse_set<'a>(raw: &'a str, example: &str) -> Result<(&'a str, f64)> {
+    let Some((key, value)) = raw.split_once('=') else {
+        bail!("--set {raw}: expected KEY=VALUE, e.g. --set {example} or --set alpha0=pi/2");
+    };
+    let key = key.trim();
+    if key.is_empty() {
+        bail!("--set {raw}: the key is empty");
+    }
+    let Some(x) = parse_angle(value) else {
+        bail!(
+            "--set {raw}: `{}` is not a number (numbers and angle expressions such as 2.5, \
+             1e-3, pi/2, -3pi/4 are accepted)",
+            value.trim()
+        );
+    };
+    Ok((key, x))
+}
+
 /// Parses three comma-separated numbers (angle expressions allowed) for the flag `--{flag}`;
 /// every value must be finite.
 pub fn parse_triple(flag: &str, s: &str) -> Result<Vector3<f64>> {

@@ -25,7 +25,7 @@ use tumble_scenarios::{
     StepControl,
 };
 
-use super::args::parse_angle;
+use super::args::parse_set;
 use crate::output;
 use crate::plot;
 
@@ -81,25 +81,6 @@ fn is_file(arg: &str) -> bool {
         || Path::new(arg).is_file()
 }
 
-/// Parses one `--set KEY=VALUE`.
-fn parse_set(raw: &str) -> Result<(&str, f64)> {
-    let Some((key, value)) = raw.split_once('=') else {
-        bail!("--set {raw}: expected KEY=VALUE, e.g. --set omega0=5 or --set alpha0=pi/2");
-    };
-    let key = key.trim();
-    if key.is_empty() {
-        bail!("--set {raw}: the parameter name is empty");
-    }
-    let Some(x) = parse_angle(value) else {
-        bail!(
-            "--set {raw}: `{}` is not a number (numbers and angle expressions such as 2.5, \
-             1e-3, pi/2, -3pi/4 are accepted)",
-            value.trim()
-        );
-    };
-    Ok((key, x))
-}
-
 /// A scene and its parameter overrides, as `simulate` and `work-precision` take them.
 #[derive(clap::Args, Debug)]
 pub struct SceneArgs {
@@ -140,7 +121,7 @@ pub(crate) fn load_scene(
         (scene, "builtin".to_string(), params, RunOptions::default())
     };
     for raw in set {
-        let (key, value) = parse_set(raw)?;
+        let (key, value) = parse_set(raw, "omega0=5")?;
         params
             .set(key, value)
             .with_context(|| format!("--set {raw}"))?;

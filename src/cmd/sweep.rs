@@ -28,13 +28,13 @@ use std::time::Duration;
 use anyhow::{Result, bail};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use serde_json::{Value, json};
-use tumble_scenarios::StepControl;
-use tumble_scenarios::sweep::{
+use tumble_scenarios::{Guide, StepControl};
+use tumble_studies::sweep::{
     self, AxisValues, Metric, Override, PointRow, Progress, RunConfig, Sampling, Shard, Status,
     SweepDefinition, SweepReport,
 };
 
-use super::args::parse_angle;
+use super::args::parse_set;
 use crate::output;
 use crate::plot;
 
@@ -125,23 +125,10 @@ impl PointsFailed {
 
 /// Parses one `--set KEY=VALUE`.
 fn parse_override(raw: &str) -> Result<Override> {
-    let Some((key, value)) = raw.split_once('=') else {
-        bail!("--set {raw}: expected KEY=VALUE, e.g. --set run.dt=0.005 or --set theta0=pi/3");
-    };
-    let key = key.trim();
-    if key.is_empty() {
-        bail!("--set {raw}: the key is empty");
-    }
-    let Some(x) = parse_angle(value) else {
-        bail!(
-            "--set {raw}: `{}` is not a number (numbers and angle expressions such as 2.5, \
-             1e-3, pi/2 are accepted)",
-            value.trim()
-        );
-    };
+    let (key, value) = parse_set(raw, "run.dt=0.005")?;
     Ok(Override {
         key: key.to_string(),
-        value: x,
+        value,
         text: raw.to_string(),
     })
 }
@@ -481,13 +468,7 @@ fn draw_plots(def: &SweepDefinition, dir: &Path, rows: &[PointRow]) -> Result<Ve
         grid[j][i] = value(row);
     }
     if increasing(&xs) && increasing(&ys) {
-        let markers = critical_spin(def)
-            .map(|w| plot::heatmap::Marker {
-                x: w,
-                label: " √(g/a)".to_string(),
-            })
-            .into_iter()
-            .collect();
+        let (markers, curves) = guides(def, &xs);
         let map = plot::heatmap::Heatmap {
             title: format!("{}: {} {horizon}", info.name, metric.description()),
             subtitle: subtitle.clone(),
@@ -499,7 +480,7 @@ fn draw_plots(def: &SweepDefinition, dir: &Path, rows: &[PointRow]) -> Result<Ve
             values: grid.clone(),
             range: None,
             markers,
-            curves: relative_equilibrium(def).into_iter().collect(),
+            curves,
             size: (1000, 720),
         };
         for ext in ["png", "svg"] {
@@ -544,38 +525,25 @@ fn draw_plots(def: &SweepDefinition, dir: &Path, rows: &[PointRow]) -> Result<Ve
     Ok(written)
 }
 
-/// `√(g/a)` when the map's x axis is a hoop's spin `omega0` with `g` and `a` fixed.
-fn critical_spin(def: &SweepDefinition) -> Option<f64> {
-    let fixed = |n: &str| {
-        (!def.axes.iter().any(|a| a.parameter == n))
-            .then(|| def.params.get(n).ok())
-            .flatten()
-    };
-    (def.axes[0].parameter == "omega0")
-        .then(|| Some((fixed("g")? / fixed("a")?).sqrt()))
-        .flatten()
-        .filter(|w| w.is_finite() && *w > 0.0)
-}
-
-/// For a hoop map of `omega0` against `alpha0` with `g` and `a` fixed: the bead's relative
-/// equilibrium on a hoop spun at `ω`, `cos α* = g/(a ω²)` (`ω > √(g/a)`, DESIGN §5). A bead
-/// released there (at rest on the hoop) is in equilibrium relative to the spinning hoop, so
-/// nothing tips the hoop: the map's valley of small tilt follows this curve.
-fn relative_equilibrium(def: &SweepDefinition) -> Option<plot::heatmap::Curve> {
-    let critical = critical_spin(def)?;
-    let y = def.axes.get(1)?;
-    if y.parameter != "alpha0" || def.scene.info().name != "free-hoop" {
-        return None;
+/// The scene's guides for a map of `def` whose first axis takes the values `xs`: vertical
+/// markers and curves.
+fn guides(
+    def: &SweepDefinition,
+    xs: &[f64],
+) -> (Vec<plot::heatmap::Marker>, Vec<plot::heatmap::Curve>) {
+    let axes: Vec<&str> = def.axes.iter().map(|a| a.parameter).collect();
+    let range = (
+        xs.first().copied().unwrap_or(0.0),
+        xs.last().copied().unwrap_or(0.0),
+    );
+    let (mut markers, mut curves) = (Vec::new(), Vec::new());
+    for guide in def.scene.map_guides(&def.params, &axes, range) {
+        match guide {
+            Guide::Vertical { x, label } => markers.push(plot::heatmap::Marker { x, label }),
+            Guide::Curve { label, points } => curves.push(plot::heatmap::Curve { label, points }),
+        }
     }
-    let end = *def.axes[0].grid_values().last()?;
-    let points = (0..=400)
-        .map(|k| critical + (end - critical) * f64::from(k) / 400.0)
-        .map(|w| (w, (critical * critical / (w * w)).acos()))
-        .collect();
-    Some(plot::heatmap::Curve {
-        label: "cos α* = g/(a ω₀²)".to_string(),
-        points,
-    })
+    (markers, curves)
 }
 
 /// The definition as JSON.

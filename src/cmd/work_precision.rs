@@ -1,7 +1,7 @@
 //! `tumble work-precision`: speed against error for every integrator that runs a scene, or
 //! (`--long`) the relative energy error over a million steps and more.
 //!
-//! The numerics live in `tumble_scenarios::work_precision` (ladders, reference, error norm,
+//! The numerics live in `tumble_studies::work_precision` (ladders, reference, error norm,
 //! long runs); this module validates the flags, prints progress and a summary, and writes
 //! `work-precision.csv`, `manifest.json` and the plots (`work-precision.png`/`.svg`, or
 //! `long.csv`, `long.png`/`.svg`) into the output folder.
@@ -12,10 +12,10 @@ use std::path::PathBuf;
 use anyhow::{Context, Result, bail};
 use serde_json::json;
 use tumble_integrators::registry;
-use tumble_scenarios::work_precision::{
+use tumble_scenarios::{Params, Scene, StepControl};
+use tumble_studies::work_precision::{
     self, Config, Ladder, LongRun, Reference, fitted_slope, long_run_methods,
 };
-use tumble_scenarios::{Params, Scene, StepControl};
 
 use super::simulate::{SceneArgs, flag_words, load_scene, number};
 use super::sweep::round_for_label;

@@ -9,7 +9,7 @@ use std::time::{Duration, Instant};
 use tempfile::TempDir;
 
 use crate::support::{root, stderr, succeeds, tumble_in};
-use tumble_scenarios::sweep::SweepDefinition;
+use tumble_studies::sweep::SweepDefinition;
 
 fn read(path: &Path) -> String {
     std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))

@@ -24,12 +24,11 @@ pub mod params;
 pub mod scene;
 pub mod scene_file;
 pub mod scenes;
-pub mod sweep;
-pub mod work_precision;
+pub mod toml_file;
 
 pub use error::{ModelError, SceneError};
 pub use lagrangian::{EulerLagrange, Lagrangian, LagrangianOde};
 pub use params::{Domain, ParamSpec, Params};
 pub use scene::{
-    Observe, Recorder, RunOptions, RunPlan, RunSummary, Scene, SceneInfo, StepControl,
+    Guide, Observe, Recorder, RunOptions, RunPlan, RunSummary, Scene, SceneInfo, StepControl,
 };

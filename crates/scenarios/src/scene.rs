@@ -331,6 +331,15 @@ impl Recorder for Rows {
     }
 }
 
+/// The final state of a run: its coordinates and rates.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FinalState {
+    /// Time reached.
+    pub t: f64,
+    /// Coordinates then rates, as the scene's CSV columns after `t`.
+    pub values: Vec<f64>,
+}
+
 /// Summary of a run.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RunSummary {
@@ -344,6 +353,26 @@ pub struct RunSummary {
     pub max_energy_rel_err: f64,
     /// Rows handed to the recorder.
     pub rows: u64,
+}
+
+/// A guide drawn over the map of a sweep of a scene: a line or curve the scene's physics says
+/// the map's features follow.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Guide {
+    /// A vertical line at `x` (a critical value of the map's first axis).
+    Vertical {
+        /// Where.
+        x: f64,
+        /// Its label.
+        label: String,
+    },
+    /// A curve through `points` (first axis, second axis).
+    Curve {
+        /// Its label.
+        label: String,
+        /// The points, in order.
+        points: Vec<(f64, f64)>,
+    },
 }
 
 /// A built-in scene.
@@ -376,6 +405,25 @@ pub trait Scene: Sync {
         recorder: &mut dyn Recorder,
     ) -> Result<RunSummary, SceneError> {
         self.simulate(params, &options.resolve(self.info())?, recorder)
+    }
+
+    /// For a scene of a torque-free body whose flips about the intermediate principal axis can
+    /// be counted: that axis in the body frame at `params` (the `flips` metric counts sign
+    /// changes of `ω` along it). `None`: the scene has no such axis.
+    ///
+    /// # Errors
+    /// (Inside the `Some`) invalid parameters, or principal moments without a strict middle one.
+    fn intermediate_axis(
+        &self,
+        _params: &Params,
+    ) -> Option<Result<nalgebra::Vector3<f64>, SceneError>> {
+        None
+    }
+
+    /// Guides for the map of a sweep of this scene over the parameters `axes` (first axis
+    /// horizontal, spanning `x_range`), the others fixed at `params`. Empty by default.
+    fn map_guides(&self, _params: &Params, _axes: &[&str], _x_range: (f64, f64)) -> Vec<Guide> {
+        Vec::new()
     }
 }
 

@@ -58,7 +58,7 @@
 use std::collections::BTreeMap;
 use std::fmt;
 use std::ops::Range;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use serde::Deserialize;
 use toml::Spanned;
@@ -67,80 +67,17 @@ use crate::error::SceneError;
 use crate::params::Params;
 use crate::scene::{RunOptions, Scene, StepControl};
 use crate::scenes;
+pub use crate::toml_file::Location;
+use crate::toml_file::{self, TomlFileError, describe};
 
-/// Where in a scene file something is: its origin (a path, or a name given to text) and, when
-/// known, the 1-based line and column.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct Location {
-    /// The file's path as given, or the name given to parsed text.
-    pub origin: String,
-    /// 1-based `(line, column)`; `None` when the parser could not place the error.
-    pub position: Option<(usize, usize)>,
-}
-
-impl Location {
-    /// The location of byte offset `offset` in `text`.
-    #[must_use]
-    pub fn at(origin: &str, text: &str, offset: usize) -> Self {
-        let offset = offset.min(text.len());
-        let before = &text[..offset];
-        let line = before.matches('\n').count() + 1;
-        let line_start = before.rfind('\n').map_or(0, |i| i + 1);
-        let column = before[line_start..].chars().count() + 1;
-        Location {
-            origin: origin.to_string(),
-            position: Some((line, column)),
-        }
-    }
-
-    /// The 1-based line, when known.
-    #[must_use]
-    pub fn line(&self) -> Option<usize> {
-        self.position.map(|(line, _)| line)
-    }
-}
-
-impl fmt::Display for Location {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self.position {
-            Some((line, column)) => write!(f, "{}:{line}:{column}", self.origin),
-            None => f.write_str(&self.origin),
-        }
-    }
-}
-
-/// What can be wrong with a scene file. Every variant but [`SceneFileError::Read`] and
-/// [`SceneFileError::MissingScene`] carries the location of the offending key.
+/// What can be wrong with a scene file. Every variant carries the location of the offending
+/// key, but a file that cannot be read or names no scene ([`TomlFileError`]).
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum SceneFileError {
-    /// The file could not be read.
-    #[error("{}: cannot read the scene file", path.display())]
-    Read {
-        /// The path given.
-        path: PathBuf,
-        /// The I/O error.
-        source: std::io::Error,
-    },
-    /// Not valid TOML, an unknown key, a duplicate key or a value of the wrong type: the TOML
-    /// parser's message, followed by the offending line.
-    #[error("{at}: {message}{excerpt}")]
-    Syntax {
-        /// Where.
-        at: Location,
-        /// The parser's message (it names the key).
-        message: String,
-        /// The offending line, indented, with a caret under the column (empty when unknown).
-        excerpt: String,
-    },
-    /// The file does not name its model.
-    #[error("{origin}: missing `scene = \"NAME\"` (the model kind); built-in scenes: {known}")]
-    MissingScene {
-        /// The file.
-        origin: String,
-        /// The built-in scene names.
-        known: String,
-    },
+    /// Not readable, not TOML, an unknown key, a value of the wrong type, no scene named.
+    #[error(transparent)]
+    File(#[from] TomlFileError),
     /// The scene, a parameter or a run option was rejected by the scene: unknown scene,
     /// unknown parameter, value outside its domain, unsupported integrator, invalid step,
     /// tolerance, horizon or cadence.
@@ -199,13 +136,12 @@ impl SceneFileError {
     #[must_use]
     pub fn location(&self) -> Option<&Location> {
         match self {
-            SceneFileError::Syntax { at, .. }
-            | SceneFileError::Scene { at, .. }
+            SceneFileError::File(e) => e.location(),
+            SceneFileError::Scene { at, .. }
             | SceneFileError::NotANumber { at, .. }
             | SceneFileError::InvalidEvery { at, .. }
             | SceneFileError::StepAndTolerance { at }
             | SceneFileError::BodyNotApplicable { at, .. } => Some(at),
-            SceneFileError::Read { .. } | SceneFileError::MissingScene { .. } => None,
         }
     }
 }
@@ -255,34 +191,6 @@ impl fmt::Debug for SceneFile {
     }
 }
 
-/// Describes a TOML value for an error message (scene and sweep files).
-pub(crate) fn describe(value: &toml::Value) -> String {
-    match value {
-        toml::Value::String(s) => format!("a string {s:?}"),
-        toml::Value::Integer(i) => format!("the integer {i}"),
-        toml::Value::Float(x) => format!("the float {x}"),
-        toml::Value::Boolean(b) => format!("the boolean {b}"),
-        toml::Value::Datetime(d) => format!("the date-time {d}"),
-        toml::Value::Array(_) => "an array".to_string(),
-        toml::Value::Table(_) => "a table".to_string(),
-    }
-}
-
-/// A line of `text` with a caret under `column`, indented, or empty when unplaced (scene and
-/// sweep files).
-pub(crate) fn excerpt(text: &str, at: &Location) -> String {
-    let Some((line, column)) = at.position else {
-        return String::new();
-    };
-    let Some(source) = text.lines().nth(line - 1) else {
-        return String::new();
-    };
-    format!(
-        "\n    {line:>4} | {source}\n         | {}^",
-        " ".repeat(column.saturating_sub(1))
-    )
-}
-
 /// Parsing state: the text and its origin, to place spans.
 struct Source<'a> {
     origin: &'a str,
@@ -322,12 +230,9 @@ impl SceneFile {
     /// Reads and validates the scene file at `path`.
     ///
     /// # Errors
-    /// [`SceneFileError::Read`] if the file cannot be read, otherwise as [`SceneFile::parse`].
+    /// [`TomlFileError::Read`] if the file cannot be read, otherwise as [`SceneFile::parse`].
     pub fn load(path: &Path) -> Result<Self, SceneFileError> {
-        let text = std::fs::read_to_string(path).map_err(|source| SceneFileError::Read {
-            path: path.to_path_buf(),
-            source,
-        })?;
+        let text = toml_file::read(path, "scene")?;
         Self::parse(&text, &path.display().to_string())
     }
 
@@ -339,33 +244,10 @@ impl SceneFile {
     /// invalid run options, a `[body]` table for a scene that takes none.
     pub fn parse(text: &str, origin: &str) -> Result<Self, SceneFileError> {
         let src = Source { origin, text };
-        let raw: RawFile = toml::from_str(text).map_err(|e| {
-            let at = match e.span() {
-                Some(span) => src.at(&span),
-                None => Location {
-                    origin: origin.to_string(),
-                    position: None,
-                },
-            };
-            SceneFileError::Syntax {
-                excerpt: excerpt(text, &at),
-                at,
-                message: e.message().trim_end().to_string(),
-            }
-        })?;
+        let raw: RawFile = toml_file::parse(text, origin)?;
 
-        let known = || {
-            scenes::builtin()
-                .iter()
-                .map(|s| s.info().name)
-                .collect::<Vec<_>>()
-                .join(", ")
-        };
         let Some(scene_name) = raw.scene else {
-            return Err(SceneFileError::MissingScene {
-                origin: origin.to_string(),
-                known: known(),
-            });
+            return Err(TomlFileError::missing_scene(origin).into());
         };
         let scene = scenes::find(scene_name.get_ref()).map_err(|error| SceneFileError::Scene {
             at: src.at(&scene_name.span()),
@@ -553,7 +435,10 @@ mod tests {
     #[test]
     fn malformed_toml_names_its_line() {
         let e = parse("scene = \"driven-hoop\"\n[parameters]\nM = = 1\n").unwrap_err();
-        assert!(matches!(e, SceneFileError::Syntax { .. }), "{e}");
+        assert!(
+            matches!(e, SceneFileError::File(TomlFileError::Syntax { .. })),
+            "{e}"
+        );
         assert_eq!(line_of(&e), 3, "{e}");
         assert!(e.to_string().starts_with("test.toml:3:"), "{e}");
         assert!(e.to_string().contains("M = = 1"), "excerpt missing: {e}");
@@ -572,7 +457,10 @@ mod tests {
     #[test]
     fn missing_and_unknown_scenes_are_errors() {
         let e = parse("[parameters]\nM = 1\n").unwrap_err();
-        assert!(matches!(e, SceneFileError::MissingScene { .. }), "{e}");
+        assert!(
+            matches!(e, SceneFileError::File(TomlFileError::MissingScene { .. })),
+            "{e}"
+        );
         assert!(e.to_string().contains("driven-hoop"), "{e}");
         let e = parse("# a comment\nscene = \"warp-drive\"\n").unwrap_err();
         assert!(
@@ -619,7 +507,10 @@ mod tests {
         assert_eq!(line_of(&e), 3);
         assert!(e.to_string().contains("heavy"), "{e}");
         let e = parse("scene = 3\n").unwrap_err();
-        assert!(matches!(e, SceneFileError::Syntax { .. }), "{e}");
+        assert!(
+            matches!(e, SceneFileError::File(TomlFileError::Syntax { .. })),
+            "{e}"
+        );
         assert_eq!(line_of(&e), 1);
         let e = parse("scene = \"driven-hoop\"\n[parameters]\nM = 9007199254740993\n").unwrap_err();
         assert!(matches!(e, SceneFileError::NotANumber { .. }), "{e}");

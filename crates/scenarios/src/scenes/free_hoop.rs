@@ -41,12 +41,13 @@ use tumble_integrators::{Ode, ProblemKind};
 use tumble_kinematics::EulerConvention;
 use tumble_kinematics::so3::hat;
 
-use super::hoop::{HoopParams, tilt_from_normal};
+use super::hoop::{HoopParams, critical_spin, critical_spin_guide, tilt_from_normal};
 use crate::dispatch;
 use crate::error::SceneError;
 use crate::params::{Domain, ParamSpec, Params};
 use crate::scene::{
-    Recorder, RowObserver, RunPlan, RunSummary, Scene, SceneInfo, continuous_quaternion, run_vector,
+    Guide, Recorder, RowObserver, RunPlan, RunSummary, Scene, SceneInfo, continuous_quaternion,
+    run_vector,
 };
 
 /// The free hoop on SO(3) × ℝ.
@@ -204,15 +205,15 @@ fn write_row(
 
 /// The final state at time `t` of a flattened run (`y`, from any integrator of
 /// [`FlatFreeHoop`], a peer crate's included), as the scene's own run reports it for the
-/// work–precision error ([`crate::work_precision::state_error`]): the coordinates
+/// work–precision error (`tumble_studies::work_precision::state_error`): the coordinates
 /// `qw, qx, qy, qz` (`w ≥ 0`; the error compares quaternions up to sign) and `alpha`, then
 /// the rates `omega_x, omega_y, omega_z` (body) and `alpha_dot`.
 #[must_use]
-pub fn final_state(model: &FreeHoop, t: f64, y: &Flat) -> crate::work_precision::FinalState {
+pub fn final_state(model: &FreeHoop, t: f64, y: &Flat) -> crate::scene::FinalState {
     let mut row = vec![0.0; FREE_HOOP.columns().len()];
     write_row(model, t, &unflatten(y), &mut None, &mut row);
     let n = FREE_HOOP.coordinates.len() + FREE_HOOP.rate_names.len();
-    crate::work_precision::FinalState {
+    crate::scene::FinalState {
         t,
         values: row[1..=n].to_vec(),
     }
@@ -378,5 +379,29 @@ impl Scene for FreeHoopScene {
             &mut [],
             recorder,
         )
+    }
+
+    /// The critical spin `√(g/a)` on a map over `omega0`; on a map of `omega0` against
+    /// `alpha0`, also the bead's relative equilibrium on a hoop spun at `ω`,
+    /// `cos α* = g/(a ω²)` (`ω > √(g/a)`): a bead released there at rest on the hoop stays
+    /// there relative to the spinning hoop, so nothing tips the hoop — the map's valley of
+    /// small tilt follows this curve.
+    fn map_guides(&self, params: &Params, axes: &[&str], x_range: (f64, f64)) -> Vec<Guide> {
+        let Some(critical) = critical_spin(params, axes) else {
+            return Vec::new();
+        };
+        let mut guides = vec![critical_spin_guide(critical)];
+        if axes.get(1) == Some(&"alpha0") {
+            let end = x_range.1;
+            let points = (0..=400)
+                .map(|k| critical + (end - critical) * f64::from(k) / 400.0)
+                .map(|w| (w, (critical * critical / (w * w)).acos()))
+                .collect();
+            guides.push(Guide::Curve {
+                label: "cos α* = g/(a ω₀²)".to_string(),
+                points,
+            });
+        }
+        guides
     }
 }

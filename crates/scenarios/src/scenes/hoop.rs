@@ -39,7 +39,7 @@ use tumble_kinematics::EulerConvention;
 use crate::error::{ModelError, SceneError, finite, non_negative, positive};
 use crate::lagrangian::Lagrangian;
 use crate::params::{Domain, ParamSpec, Params};
-use crate::scene::{Recorder, RunPlan, RunSummary, Scene, SceneInfo, run_vector};
+use crate::scene::{Guide, Recorder, RunPlan, RunSummary, Scene, SceneInfo, run_vector};
 
 /// Parameters shared by the hoop scenes (SI units).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -494,6 +494,26 @@ pub static SPINNING_HOOP: SceneInfo = SceneInfo {
     rate_names: &[],
 };
 
+/// The critical spin `√(g/a)` of a hoop map whose first axis is the initial spin `omega0`, with
+/// `g` and `a` fixed at `params`: below it the bottom of a spinning hoop is the bead's only
+/// stable position, above it the bead has a relative equilibrium off the bottom.
+pub(crate) fn critical_spin(params: &Params, axes: &[&str]) -> Option<f64> {
+    if axes.first() != Some(&"omega0") {
+        return None;
+    }
+    let fixed = |n: &str| (!axes.contains(&n)).then(|| params.get(n).ok()).flatten();
+    let w = (fixed("g")? / fixed("a")?).sqrt();
+    (w.is_finite() && w > 0.0).then_some(w)
+}
+
+/// The critical spin as a map guide.
+pub(crate) fn critical_spin_guide(w: f64) -> Guide {
+    Guide::Vertical {
+        x: w,
+        label: " √(g/a)".to_string(),
+    }
+}
+
 /// Runs `spinning-hoop`.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct SpinningHoopScene;
@@ -540,5 +560,12 @@ impl Scene for SpinningHoopScene {
             &mut [],
             recorder,
         )
+    }
+
+    fn map_guides(&self, params: &Params, axes: &[&str], _x_range: (f64, f64)) -> Vec<Guide> {
+        critical_spin(params, axes)
+            .map(critical_spin_guide)
+            .into_iter()
+            .collect()
     }
 }

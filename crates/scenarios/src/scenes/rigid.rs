@@ -264,6 +264,27 @@ fn inertia_body(moments: Vector3<f64>) -> Result<FreeRigidBody, SceneError> {
     })
 }
 
+/// The intermediate one of principal `moments` as a column of `axes`, or an error when no
+/// moment lies strictly between the others.
+fn intermediate_of(moments: Vector3<f64>, axes: &Matrix3<f64>) -> Result<Vector3<f64>, SceneError> {
+    let middle = (0..3).find(|&k| {
+        let (a, b) = (moments[(k + 1) % 3], moments[(k + 2) % 3]);
+        (a < moments[k] && moments[k] < b) || (b < moments[k] && moments[k] < a)
+    });
+    match middle {
+        Some(k) => Ok(axes.column(k).into_owned()),
+        None => Err(SceneError::InvalidOption {
+            option: "flips",
+            value: f64::NAN,
+            reason: format!(
+                "the principal moments {:?} have no strict middle one: the intermediate axis \
+                 is not defined",
+                moments.as_slice()
+            ),
+        }),
+    }
+}
+
 fn check_momentum(scene: &str, m: &Vector3<f64>) -> Result<(), SceneError> {
     if m.norm() > 0.0 {
         Ok(())
@@ -301,6 +322,13 @@ impl Scene for FreeBodyScene {
         let exact = body.flow(&r0, &m0)?;
         let s0 = RigidBodyState::new(&r0, m0);
         run_rigid(info, body, Some(body), s0, Some(exact), plan, recorder)
+    }
+
+    fn intermediate_axis(&self, params: &Params) -> Option<Result<Vector3<f64>, SceneError>> {
+        Some((|| {
+            let moments = Vector3::new(params.get("I1")?, params.get("I2")?, params.get("I3")?);
+            intermediate_of(moments, &Matrix3::identity())
+        })())
     }
 }
 
@@ -383,6 +411,12 @@ impl Scene for DzhanibekovScene {
         check_momentum(info.name, &s0.momentum)?;
         let exact = body.flow(&Rotation3::identity(), &s0.momentum)?;
         run_rigid(info, body, Some(body), s0, Some(exact), plan, recorder)
+    }
+
+    fn intermediate_axis(&self, params: &Params) -> Option<Result<Vector3<f64>, SceneError>> {
+        Some(Self::body_and_state(params).and_then(|(body, _)| {
+            intermediate_of(body.principal_moments(), body.principal_axes().matrix())
+        }))
     }
 }
 

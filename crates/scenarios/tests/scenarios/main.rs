@@ -2,7 +2,6 @@
 //! after what it proves, against closed forms, conserved quantities or textbook equations.
 
 mod support;
-mod work_precision;
 
 mod coriolis_drop;
 mod driven_hoop;

@@ -31,12 +31,12 @@ use std::time::Instant;
 use tumble_integrators::registry::{self, Order};
 use tumble_integrators::verification::fit_power_law;
 
-use crate::error::SceneError;
-use crate::params::Params;
-use crate::scene::{
+use tumble_integrators::Flow;
+use tumble_scenarios::error::SceneError;
+use tumble_scenarios::params::Params;
+use tumble_scenarios::scene::{
     Observe, Recorder, RunOptions, RunPlan, RunSummary, Scene, SceneInfo, StepControl,
 };
-use tumble_integrators::Flow;
 
 /// Keeps the last row of a run (the final state), overwriting it in place.
 #[derive(Debug, Clone, Default)]
@@ -57,14 +57,7 @@ impl Recorder for LastRow {
     }
 }
 
-/// The final state of a run: its coordinates and rates.
-#[derive(Debug, Clone, PartialEq)]
-pub struct FinalState {
-    /// Time reached.
-    pub t: f64,
-    /// Coordinates then rates, as the scene's CSV columns after `t`.
-    pub values: Vec<f64>,
-}
+pub use tumble_scenarios::scene::FinalState;
 
 /// Runs `scene` and returns its final state and summary.
 ///

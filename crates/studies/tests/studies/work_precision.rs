@@ -4,10 +4,10 @@
 
 use tumble_integrators::registry::{self, Order};
 use tumble_scenarios::scenes::{self, find};
-use tumble_scenarios::work_precision::{
+use tumble_scenarios::{Recorder, StepControl};
+use tumble_studies::work_precision::{
     self, Config, EnergyHistory, FinalState, fitted_slope, long_run_methods,
 };
-use tumble_scenarios::{Recorder, StepControl};
 
 /// A ladder over `t_end` limited by steps, not by time, so that it does not depend on the
 /// machine's speed.

@@ -34,10 +34,9 @@ use std::fmt;
 use nalgebra::Vector3;
 use tumble_integrators::Flow;
 
-use crate::error::SceneError;
-use crate::params::Params;
-use crate::scene::{Recorder, Scene, SceneInfo};
-use crate::scenes::rigid::DzhanibekovScene;
+use tumble_scenarios::error::SceneError;
+use tumble_scenarios::params::Params;
+use tumble_scenarios::scene::{Recorder, Scene};
 
 /// A quantity recorded for every point of a sweep.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -120,9 +119,10 @@ impl Metric {
         )
     }
 
-    /// Why the metric does not apply to `info`'s scene, or `None` when it does.
+    /// Why the metric does not apply to `scene`, or `None` when it does.
     #[must_use]
-    pub fn not_applicable(self, info: &SceneInfo) -> Option<String> {
+    pub fn not_applicable(self, scene: &dyn Scene) -> Option<String> {
+        let info = scene.info();
         let columns = info.columns();
         if self.needs_tilt() && !columns.iter().any(|c| c == "tilt") {
             return Some(format!(
@@ -131,10 +131,15 @@ impl Metric {
                 info.name
             ));
         }
-        if self == Metric::Flips && !FLIP_SCENES.contains(&info.name) {
+        if self == Metric::Flips && scene.intermediate_axis(&info.default_params()).is_none() {
+            let bodies: Vec<&str> = tumble_scenarios::scenes::builtin()
+                .iter()
+                .filter(|s| s.intermediate_axis(&s.info().default_params()).is_some())
+                .map(|s| s.info().name)
+                .collect();
             return Some(format!(
                 "`flips` applies to the torque-free bodies ({}), not to scene `{}`",
-                FLIP_SCENES.join(", "),
+                bodies.join(", "),
                 info.name
             ));
         }
@@ -145,43 +150,6 @@ impl Metric {
 impl fmt::Display for Metric {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(self.name())
-    }
-}
-
-/// Scenes whose flips can be counted: torque-free bodies with a known inertia.
-const FLIP_SCENES: [&str; 2] = ["free-body", "dzhanibekov"];
-
-/// The body-frame intermediate principal axis of a torque-free scene's body.
-///
-/// # Errors
-/// Invalid parameters, or principal moments without a strict middle one (the axis is then
-/// not defined).
-fn intermediate_axis(info: &SceneInfo, params: &Params) -> Result<Vector3<f64>, SceneError> {
-    let (moments, axes) = match info.name {
-        "dzhanibekov" => {
-            let (body, _) = DzhanibekovScene::body_and_state(params)?;
-            (body.principal_moments(), *body.principal_axes().matrix())
-        }
-        _ => {
-            let moments = Vector3::new(params.get("I1")?, params.get("I2")?, params.get("I3")?);
-            (moments, nalgebra::Matrix3::identity())
-        }
-    };
-    let middle = (0..3).find(|&k| {
-        let (a, b) = (moments[(k + 1) % 3], moments[(k + 2) % 3]);
-        (a < moments[k] && moments[k] < b) || (b < moments[k] && moments[k] < a)
-    });
-    match middle {
-        Some(k) => Ok(axes.column(k).into_owned()),
-        None => Err(SceneError::InvalidOption {
-            option: "flips",
-            value: f64::NAN,
-            reason: format!(
-                "the principal moments {:?} have no strict middle one: the intermediate axis \
-                 is not defined",
-                moments.as_slice()
-            ),
-        }),
     }
 }
 
@@ -471,7 +439,13 @@ impl MetricRecorder {
             .then(|| TiltTracker::new(tilt_threshold));
         let flips = if metrics.contains(&Metric::Flips) {
             Some(FlipCounter {
-                axis: intermediate_axis(info, params)?,
+                axis: scene.intermediate_axis(params).ok_or_else(|| {
+                    SceneError::InvalidOption {
+                        option: "flips",
+                        value: f64::NAN,
+                        reason: format!("scene `{}` has no intermediate axis", info.name),
+                    }
+                })??,
                 omega_column: find("omega_x").ok_or_else(|| SceneError::InvalidOption {
                     option: "flips",
                     value: f64::NAN,

@@ -5,8 +5,8 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 use super::definition::splitmix64;
 use super::*;
-use crate::scene::{Rows, StepControl};
-use crate::scenes::find;
+use tumble_scenarios::scene::{Rows, StepControl};
+use tumble_scenarios::scenes::find;
 
 fn parse(text: &str) -> Result<SweepDefinition, SweepFileError> {
     SweepDefinition::parse(text, "test.toml", &[])
@@ -311,7 +311,13 @@ fn bad_files_name_the_key_and_its_line() {
         assert!(msg.starts_with("test.toml:"), "{msg}");
     }
     let e = parse("[[axes]]\nparameter = \"omega0\"\nvalues = [1.0]\n").unwrap_err();
-    assert!(matches!(e, SweepFileError::MissingScene { .. }), "{e}");
+    assert!(
+        matches!(
+            e,
+            SweepFileError::File(tumble_scenarios::toml_file::TomlFileError::MissingScene { .. })
+        ),
+        "{e}"
+    );
     let e = parse("scene = \"free-hoop\"\n").unwrap_err();
     assert!(matches!(e, SweepFileError::NoAxes { .. }), "{e}");
     let e = parse("scene = \"free-hoop\"\n[[axes]]\nparameter = \"m\"\n").unwrap_err();

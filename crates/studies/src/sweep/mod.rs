@@ -71,17 +71,21 @@
 //! `AtomicBool`.
 
 pub mod definition;
+mod draft;
 mod engine;
+pub mod file_error;
 pub mod journal;
 pub mod metrics;
+mod raw;
+mod value;
 
 use std::fmt;
 use std::path::PathBuf;
 
-pub use definition::{
-    Axis, AxisValues, Origin, Override, Sampling, Spacing, SweepDefinition, SweepFileError,
-};
+pub use definition::{Axis, AxisValues, Sampling, Spacing, SweepDefinition};
+pub use draft::Override;
 pub use engine::{Progress, RunConfig, SweepReport, merge, run, run_point};
+pub use file_error::{Origin, SweepFileError};
 pub use journal::{DEFINITION, JOURNAL, PointRow, RESULTS, Status, results_csv};
 pub use metrics::Metric;
 

@@ -1,0 +1,173 @@
+//! What scene files and sweep files share: reading the text, parsing it into raw tables with
+//! every syntax error placed at its `file:line:column` and shown with a caret, the
+//! [`Location`] of a key, the description of a TOML value for messages, and the errors common
+//! to both ([`TomlFileError`]).
+
+use std::fmt;
+use std::path::{Path, PathBuf};
+
+use serde::de::DeserializeOwned;
+
+use crate::scenes;
+
+/// Where in a file something is: its origin (a path, or a name given to text) and, when
+/// known, the 1-based line and column.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Location {
+    /// The file's path as given, or the name given to parsed text.
+    pub origin: String,
+    /// 1-based `(line, column)`; `None` when the parser could not place the error.
+    pub position: Option<(usize, usize)>,
+}
+
+impl Location {
+    /// The location of byte offset `offset` in `text`.
+    #[must_use]
+    pub fn at(origin: &str, text: &str, offset: usize) -> Self {
+        let offset = offset.min(text.len());
+        let before = &text[..offset];
+        let line = before.matches('\n').count() + 1;
+        let line_start = before.rfind('\n').map_or(0, |i| i + 1);
+        let column = before[line_start..].chars().count() + 1;
+        Location {
+            origin: origin.to_string(),
+            position: Some((line, column)),
+        }
+    }
+
+    /// The 1-based line, when known.
+    #[must_use]
+    pub fn line(&self) -> Option<usize> {
+        self.position.map(|(line, _)| line)
+    }
+}
+
+impl fmt::Display for Location {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.position {
+            Some((line, column)) => write!(f, "{}:{line}:{column}", self.origin),
+            None => f.write_str(&self.origin),
+        }
+    }
+}
+
+/// What can be wrong with a scene or sweep file before its keys are validated.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum TomlFileError {
+    /// The file could not be read.
+    #[error("{}: cannot read the {kind} file", path.display())]
+    Read {
+        /// `scene` or `sweep`.
+        kind: &'static str,
+        /// The path given.
+        path: PathBuf,
+        /// The I/O error.
+        source: std::io::Error,
+    },
+    /// Not valid TOML, an unknown key, a duplicate key or a value of the wrong type: the TOML
+    /// parser's message (it names the key), followed by the offending line.
+    #[error("{at}: {message}{excerpt}")]
+    Syntax {
+        /// Where.
+        at: Location,
+        /// The parser's message.
+        message: String,
+        /// The offending line, indented, with a caret under the column (empty when unplaced).
+        excerpt: String,
+    },
+    /// The file does not name its scene.
+    #[error("{origin}: missing `scene = \"NAME\"` (the model kind); built-in scenes: {known}")]
+    MissingScene {
+        /// The file.
+        origin: String,
+        /// The built-in scene names.
+        known: String,
+    },
+}
+
+impl TomlFileError {
+    /// The location of the offending text, when the error has one.
+    #[must_use]
+    pub fn location(&self) -> Option<&Location> {
+        match self {
+            TomlFileError::Syntax { at, .. } => Some(at),
+            TomlFileError::Read { .. } | TomlFileError::MissingScene { .. } => None,
+        }
+    }
+
+    /// The error for a file `origin` that names no scene.
+    #[must_use]
+    pub fn missing_scene(origin: &str) -> Self {
+        TomlFileError::MissingScene {
+            origin: origin.to_string(),
+            known: scenes::builtin()
+                .iter()
+                .map(|s| s.info().name)
+                .collect::<Vec<_>>()
+                .join(", "),
+        }
+    }
+}
+
+/// Reads the `kind` file (`scene`, `sweep`) at `path`.
+///
+/// # Errors
+/// [`TomlFileError::Read`].
+pub fn read(path: &Path, kind: &'static str) -> Result<String, TomlFileError> {
+    std::fs::read_to_string(path).map_err(|source| TomlFileError::Read {
+        kind,
+        path: path.to_path_buf(),
+        source,
+    })
+}
+
+/// Parses `text` (named `origin` in messages) into raw tables `T`.
+///
+/// # Errors
+/// [`TomlFileError::Syntax`], placed and with the offending line.
+pub fn parse<T: DeserializeOwned>(text: &str, origin: &str) -> Result<T, TomlFileError> {
+    toml::from_str(text).map_err(|e| {
+        let at = match e.span() {
+            Some(span) => Location::at(origin, text, span.start),
+            None => Location {
+                origin: origin.to_string(),
+                position: None,
+            },
+        };
+        TomlFileError::Syntax {
+            excerpt: excerpt(text, &at),
+            at,
+            message: e.message().trim_end().to_string(),
+        }
+    })
+}
+
+/// Describes a TOML value for an error message.
+#[must_use]
+pub fn describe(value: &toml::Value) -> String {
+    match value {
+        toml::Value::String(s) => format!("a string {s:?}"),
+        toml::Value::Integer(i) => format!("the integer {i}"),
+        toml::Value::Float(x) => format!("the float {x}"),
+        toml::Value::Boolean(b) => format!("the boolean {b}"),
+        toml::Value::Datetime(d) => format!("the date-time {d}"),
+        toml::Value::Array(_) => "an array".to_string(),
+        toml::Value::Table(_) => "a table".to_string(),
+    }
+}
+
+/// A line of `text` with a caret under `at`'s column, indented, or empty when unplaced.
+#[must_use]
+pub fn excerpt(text: &str, at: &Location) -> String {
+    let Some((line, column)) = at.position else {
+        return String::new();
+    };
+    let Some(source) = text.lines().nth(line - 1) else {
+        return String::new();
+    };
+    format!(
+        "\n    {line:>4} | {source}\n         | {}^",
+        " ".repeat(column.saturating_sub(1))
+    )
+}

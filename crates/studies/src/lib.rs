@@ -1,0 +1,29 @@
+//! # tumble-studies
+//!
+//! Studies built on tumble's scenes: what a researcher runs *many* simulations for.
+//!
+//! * [`sweep`] — a scene run at every point of a grid (or random samples) of its parameters, in
+//!   parallel (rayon), each point reduced to metrics while it integrates (nothing stored per
+//!   step), written to a resumable journal, shardable across machines and merged back into the
+//!   same `results.csv` as one run.
+//! * [`work_precision`] — the error at the final time against the cost of getting it: ladders
+//!   of steps or tolerances per integrator, a reference solution with its cross-check, fitted
+//!   orders, and long runs for energy drift.
+//!
+//! ## Design choices
+//!
+//! * **Plans, not options.** A sweep definition holds the [`tumble_scenarios::RunPlan`] that
+//!   [`tumble_scenarios::RunOptions::resolve`] validated once; every point runs it through
+//!   [`tumble_scenarios::Scene::simulate`]. A work–precision ladder validates its integrator's
+//!   plan once and derives each rung's step from it ([`tumble_scenarios::RunPlan::with_step`]).
+//! * **Scene knowledge stays in the scenes.** A metric that needs a body's intermediate axis
+//!   asks the scene ([`tumble_scenarios::Scene::intermediate_axis`]); the guides drawn over a
+//!   map (critical spins, relative equilibria) are the scene's
+//!   ([`tumble_scenarios::Scene::map_guides`]). No scene is named here.
+//! * **Files appear whole.** Everything written to a study's folder goes through
+//!   [`tumble_output::Destination`]; the journal is append-only and checked on resume.
+//! * **The library never prints**: progress is a callback, failures are typed errors
+//!   ([`sweep::SweepError`], [`tumble_scenarios::SceneError`]).
+
+pub mod sweep;
+pub mod work_precision;
