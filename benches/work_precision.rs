@@ -1,4 +1,4 @@
-//! Work–precision benches of the built-in scenes (DESIGN §6).
+//! Work–precision benches of the built-in scenes (docs/design.md §4).
 //!
 //! - `scene-step/<scene>/<integrator>`: the cost of one step of every integrator a scene takes,
 //!   run through `Scene::simulate` exactly as the command line runs it. Fixed-step methods take

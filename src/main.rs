@@ -2,6 +2,7 @@
 //! library crates and maps errors to a message on stderr and a non-zero exit code.
 
 mod cmd;
+mod manifest;
 mod output;
 mod plot;
 

@@ -6,7 +6,7 @@
 //! scene's own validation) before any output file is created or any step is taken; then the
 //! scene runs, streaming rows to the CSV writer.
 //!
-//! Output contract (DESIGN §7): the header is the scene's columns (`t`, coordinates, `_dot`
+//! Output contract (docs/design.md §5): the header is the scene's columns (`t`, coordinates, `_dot`
 //! rates, diagnostics); every number is written in the shortest form that reads back to the
 //! same `f64` (ryu, through the `csv` crate). Files (`-o`, `--plot`) are written to a temporary
 //! file beside the destination and renamed when complete; a failed run leaves neither. A short
@@ -16,7 +16,7 @@ use std::io::{self, Write};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use anyhow::{Context, Result, bail};
+use anyhow::{Context, Result};
 use tumble_integrators::Flow;
 use tumble_scenarios::scene_file::SceneFile;
 use tumble_scenarios::scenes;
@@ -99,12 +99,20 @@ pub struct SceneArgs {
     pub set: Vec<String>,
 }
 
-/// The scene of `target` (built-in name or TOML file) with its `--set` overrides: the scene,
-/// where it came from (`builtin` or the file's path), its parameters, and the file's run
-/// options.
-pub(crate) fn load_scene(
-    target: &SceneArgs,
-) -> Result<(&'static dyn Scene, String, Params, RunOptions)> {
+/// A scene as the command line names it, with its parameters and the file's run options.
+pub(crate) struct LoadedScene {
+    /// The scene.
+    pub scene: &'static dyn Scene,
+    /// Where it came from: `builtin` or the scene file's path.
+    pub origin: String,
+    /// Its parameters: defaults, then the file's values, then `--set`.
+    pub params: Params,
+    /// The scene file's `[run]` options (none for a built-in scene).
+    pub run: RunOptions,
+}
+
+/// The scene of `target` (built-in name or TOML file) with its `--set` overrides.
+pub(crate) fn load_scene(target: &SceneArgs) -> Result<LoadedScene> {
     let (arg, set) = (target.scene.as_str(), target.set.as_slice());
     let (scene, origin, mut params, options) = if is_file(arg) {
         let file = SceneFile::load(Path::new(arg))?;
@@ -126,12 +134,22 @@ pub(crate) fn load_scene(
             .set(key, value)
             .with_context(|| format!("--set {raw}"))?;
     }
-    Ok((scene, origin, params, options))
+    Ok(LoadedScene {
+        scene,
+        origin,
+        params,
+        run: options,
+    })
 }
 
 /// Stage one: the scene, parameters and options from the flags, validated.
 fn setup(args: &Args) -> Result<Setup> {
-    let (scene, origin, params, mut options) = load_scene(&args.target)?;
+    let LoadedScene {
+        scene,
+        origin,
+        params,
+        run: mut options,
+    } = load_scene(&args.target)?;
     if let Some(name) = &args.integrator {
         options.integrator = Some(name.clone());
     }

@@ -27,14 +27,12 @@ use std::time::Duration;
 
 use anyhow::{Result, bail};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use serde_json::{Value, json};
-use tumble_scenarios::{Guide, StepControl};
 use tumble_studies::sweep::{
-    self, AxisValues, Metric, Override, PointRow, Progress, RunConfig, Sampling, Shard, Status,
-    SweepDefinition, SweepReport,
+    self, Override, Progress, RunConfig, Shard, SweepDefinition, SweepReport,
 };
 
 use super::args::parse_set;
+use crate::manifest::{self, SweepManifest};
 use crate::output;
 use crate::plot;
 
@@ -217,13 +215,11 @@ fn finish(
     let results = dir.join("results.csv");
     output::write_whole(&results, &sweep::results_csv(def, &report.rows)?)?;
     let plots = if shard == Shard::ALL {
-        draw_plots(def, dir, &report.rows)?
+        plot::sweep::draw_plots(def, dir, &report.rows)?
     } else {
         Vec::new()
     };
-    let manifest = manifest(def, report, shard, command, &plots);
-    let mut text = serde_json::to_string_pretty(&manifest)?;
-    text.push('\n');
+    let text = manifest::to_text(&SweepManifest::new(def, report, shard, command, &plots))?;
     output::write_whole(&dir.join("manifest.json"), text.as_bytes())?;
 
     let failed = report.failures().count();
@@ -242,7 +238,7 @@ fn finish(
     eprintln!(
         "integrator   {}, {}, t in [0, {}] s",
         def.plan.integrator(),
-        step_words(def.plan.step),
+        plot::sweep::step_words(def.plan.step),
         def.plan.t_end
     );
     if command == "merge" {
@@ -301,13 +297,6 @@ fn seconds(d: Duration) -> String {
     }
 }
 
-fn step_words(step: StepControl) -> String {
-    match step {
-        StepControl::Fixed(h) => format!("fixed step dt = {h} s"),
-        StepControl::Tolerance(tol) => format!("tolerance {tol:e}"),
-    }
-}
-
 /// A progress bar with an ETA on stderr when it is a terminal; hidden otherwise.
 fn progress_bar() -> ProgressBar {
     if !std::io::stderr().is_terminal() {
@@ -359,28 +348,11 @@ fn quiet_point_panics<T>(f: impl FnOnce() -> T) -> T {
     out
 }
 
-/// The label of an axis: `omega0 (rad/s)`.
-fn axis_label(name: &str, unit: &str) -> String {
-    if unit.is_empty() {
-        name.to_string()
-    } else {
-        format!("{name} ({unit})")
-    }
-}
-
-fn metric_label(m: Metric) -> String {
-    if m.unit().is_empty() {
-        m.description().to_string()
-    } else {
-        format!("{} ({})", m.description(), m.unit())
-    }
-}
-
 /// The files a sweep writes into its folder (besides its journal), checked before it runs.
 fn folder_files(def: &SweepDefinition) -> Vec<String> {
     let mut names = vec!["results.csv".to_string(), "manifest.json".to_string()];
     if let Some(&metric) = def.metrics.first() {
-        let stem = plot_stem(metric);
+        let stem = plot::sweep::plot_stem(metric);
         for kind in ["map", "slices"] {
             for ext in ["png", "svg"] {
                 names.push(format!("{stem}-{kind}.{ext}"));
@@ -388,256 +360,6 @@ fn folder_files(def: &SweepDefinition) -> Vec<String> {
         }
     }
     names
-}
-
-/// The plot files' stem for metric `m`: `tilt` for the tilt metrics, else the metric's name.
-fn plot_stem(m: Metric) -> &'static str {
-    if m.needs_tilt() { "tilt" } else { m.name() }
-}
-
-/// The fixed parameters, for subtitles.
-fn fixed_parameters(def: &SweepDefinition) -> String {
-    def.params
-        .iter()
-        .filter(|(n, _)| !def.axes.iter().any(|a| a.parameter == *n))
-        .map(|(n, v)| format!("{n} = {}", round_for_label(v)))
-        .collect::<Vec<_>>()
-        .join(", ")
-}
-
-/// A value with at most six significant digits, for labels.
-pub(crate) fn round_for_label(v: f64) -> String {
-    let s = format!("{v:.6}");
-    let s = s.trim_end_matches('0').trim_end_matches('.');
-    if s.len() > 10 {
-        format!("{v:.4e}")
-    } else {
-        s.to_string()
-    }
-}
-
-/// Draws the map and slices of a complete grid sweep; returns the file names written.
-fn draw_plots(def: &SweepDefinition, dir: &Path, rows: &[PointRow]) -> Result<Vec<String>> {
-    let Some(&metric) = def.metrics.first() else {
-        return Ok(Vec::new());
-    };
-    if def.sampling != Sampling::Grid || def.axes.len() > 2 {
-        return Ok(Vec::new());
-    }
-    let info = def.scene.info();
-    let stem = plot_stem(metric);
-    let value = |row: &PointRow| (row.status == Status::Ok).then(|| row.metrics[0]).flatten();
-    let x_axis = &def.axes[0];
-    let xs = x_axis.grid_values();
-    let increasing = |v: &[f64]| v.windows(2).all(|w| w[0] < w[1]);
-    let horizon = format!("over t in [0, {}] s", def.plan.t_end);
-    let subtitle = format!(
-        "{}, {}; {}",
-        def.plan.integrator(),
-        step_words(def.plan.step),
-        fixed_parameters(def)
-    );
-    let mut written = Vec::new();
-    let x_label = axis_label(x_axis.parameter, x_axis.unit);
-    if def.axes.len() == 1 {
-        let slice = plot::slices::Slice {
-            label: metric.name().to_string(),
-            points: xs.iter().copied().zip(rows.iter().map(value)).collect(),
-        };
-        let fig = plot::slices::figure(
-            format!("{} {horizon}", metric.description()),
-            subtitle,
-            &x_label,
-            &metric_label(metric),
-            &[slice],
-        );
-        for ext in ["png", "svg"] {
-            let name = format!("{stem}-slices.{ext}");
-            plot::save(&fig, &dir.join(&name))?;
-            written.push(name);
-        }
-        return Ok(written);
-    }
-    let y_axis = &def.axes[1];
-    let ys = y_axis.grid_values();
-    let (nx, ny) = (xs.len(), ys.len());
-    // values[j][i] at (xs[i], ys[j]); points are numbered with the last (y) axis fastest.
-    let mut grid = vec![vec![None; nx]; ny];
-    for row in rows {
-        let (i, j) = ((row.index as usize) / ny, (row.index as usize) % ny);
-        grid[j][i] = value(row);
-    }
-    if increasing(&xs) && increasing(&ys) {
-        let (markers, curves) = guides(def, &xs);
-        let map = plot::heatmap::Heatmap {
-            title: format!("{}: {} {horizon}", info.name, metric.description()),
-            subtitle: subtitle.clone(),
-            x_label: x_label.clone(),
-            y_label: axis_label(y_axis.parameter, y_axis.unit),
-            value_label: metric_label(metric),
-            xs: xs.clone(),
-            ys: ys.clone(),
-            values: grid.clone(),
-            range: None,
-            markers,
-            curves,
-            size: (1000, 720),
-        };
-        for ext in ["png", "svg"] {
-            let name = format!("{stem}-map.{ext}");
-            plot::save(&map, &dir.join(&name))?;
-            written.push(name);
-        }
-    }
-    let slices: Vec<plot::slices::Slice> = plot::slices::pick_rows(ny, 5)
-        .into_iter()
-        .map(|j| plot::slices::Slice {
-            label: format!(
-                "{} = {}{}",
-                y_axis.parameter,
-                round_for_label(ys[j]),
-                if y_axis.unit.is_empty() {
-                    String::new()
-                } else {
-                    format!(" {}", y_axis.unit)
-                }
-            ),
-            points: xs.iter().copied().zip(grid[j].iter().copied()).collect(),
-        })
-        .collect();
-    let fig = plot::slices::figure(
-        format!(
-            "{}: {} {horizon}, against {}",
-            info.name,
-            metric.description(),
-            x_axis.parameter
-        ),
-        subtitle,
-        &x_label,
-        &metric_label(metric),
-        &slices,
-    );
-    for ext in ["png", "svg"] {
-        let name = format!("{stem}-slices.{ext}");
-        plot::save(&fig, &dir.join(&name))?;
-        written.push(name);
-    }
-    Ok(written)
-}
-
-/// The scene's guides for a map of `def` whose first axis takes the values `xs`: vertical
-/// markers and curves.
-fn guides(
-    def: &SweepDefinition,
-    xs: &[f64],
-) -> (Vec<plot::heatmap::Marker>, Vec<plot::heatmap::Curve>) {
-    let axes: Vec<&str> = def.axes.iter().map(|a| a.parameter).collect();
-    let range = (
-        xs.first().copied().unwrap_or(0.0),
-        xs.last().copied().unwrap_or(0.0),
-    );
-    let (mut markers, mut curves) = (Vec::new(), Vec::new());
-    for guide in def.scene.map_guides(&def.params, &axes, range) {
-        match guide {
-            Guide::Vertical { x, label } => markers.push(plot::heatmap::Marker { x, label }),
-            Guide::Curve { label, points } => curves.push(plot::heatmap::Curve { label, points }),
-        }
-    }
-    (markers, curves)
-}
-
-/// The definition as JSON.
-fn definition_json(def: &SweepDefinition) -> Value {
-    let parameters: serde_json::Map<String, Value> = def
-        .params
-        .iter()
-        .filter(|(n, _)| !def.axes.iter().any(|a| a.parameter == *n))
-        .map(|(n, v)| (n.to_string(), json!(v)))
-        .collect();
-    let axes: Vec<Value> = def
-        .axes
-        .iter()
-        .map(|a| match &a.values {
-            AxisValues::List(v) => json!({"parameter": a.parameter, "unit": a.unit, "values": v}),
-            AxisValues::Range {
-                start,
-                end,
-                count,
-                spacing,
-            } => json!({
-                "parameter": a.parameter,
-                "unit": a.unit,
-                "range": [start, end],
-                "count": count,
-                "spacing": format!("{spacing:?}").to_lowercase(),
-            }),
-        })
-        .collect();
-    let (dt, tol) = match def.plan.step {
-        StepControl::Fixed(h) => (Some(h), None),
-        StepControl::Tolerance(t) => (None, Some(t)),
-    };
-    json!({
-        "origin": def.origin,
-        "scene": def.scene.info().name,
-        "parameters": parameters,
-        "run": {"integrator": def.plan.integrator(), "dt": dt, "tol": tol, "t_end": def.plan.t_end},
-        "axes": axes,
-        "sampling": match def.sampling {
-            Sampling::Grid => json!({"kind": "grid"}),
-            Sampling::Random { samples, seed } => {
-                json!({"kind": "random", "samples": samples, "seed": seed, "generator": "splitmix64"})
-            }
-        },
-        "metrics": def.metrics.iter().map(|m| m.name()).collect::<Vec<_>>(),
-        "tilt_threshold": def.tilt_threshold,
-        "points": def.points(),
-    })
-}
-
-/// `manifest.json`.
-fn manifest(
-    def: &SweepDefinition,
-    report: &SweepReport,
-    shard: Shard,
-    command: &str,
-    plots: &[String],
-) -> Value {
-    let failures: Vec<Value> = report
-        .failures()
-        .map(|r| json!({"index": r.index, "status": r.status.name(), "reason": r.reason}))
-        .collect();
-    let (dt, tol) = match def.plan.step {
-        StepControl::Fixed(h) => (Some(h), None),
-        StepControl::Tolerance(t) => (None, Some(t)),
-    };
-    let mut files = vec![
-        "sweep.toml".to_string(),
-        "journal.csv".to_string(),
-        "results.csv".to_string(),
-    ];
-    files.extend(plots.iter().cloned());
-    json!({
-        "tumble_version": env!("CARGO_PKG_VERSION"),
-        "command": command,
-        "definition": definition_json(def),
-        "definition_toml": def.to_toml(),
-        "integrator": def.plan.integrator(),
-        "dt": dt,
-        "tol": tol,
-        "t_end": def.plan.t_end,
-        "shard": shard.to_string(),
-        "points": report.total,
-        "ok": report.rows.len() - failures.len(),
-        "failed": failures.len(),
-        "failures": failures,
-        "threads": report.threads,
-        "computed_points": report.computed,
-        "resumed_points": report.resumed,
-        "wall_time_s": report.elapsed.as_secs_f64(),
-        "points_per_second": report.points_per_second(),
-        "files": files,
-    })
 }
 
 #[cfg(test)]

@@ -10,17 +10,17 @@ use std::fmt::Write as _;
 use std::path::PathBuf;
 
 use anyhow::{Context, Result, bail};
-use serde_json::json;
 use tumble_integrators::registry;
 use tumble_scenarios::{Params, Scene, StepControl};
 use tumble_studies::work_precision::{
-    self, Config, Ladder, LongRun, Reference, fitted_slope, long_run_methods,
+    self, Config, Ladder, LongRun, fitted_slope, long_run_methods,
 };
 
-use super::simulate::{SceneArgs, flag_words, load_scene, number};
-use super::sweep::round_for_label;
+use super::simulate::{LoadedScene, SceneArgs, flag_words, load_scene, number};
+use crate::manifest::{self, WorkPrecisionManifest};
 use crate::output;
 use crate::plot;
+use crate::plot::sweep::round_for_label;
 use crate::plot::work_precision::Curve;
 use crate::plot::xy::Series;
 
@@ -57,7 +57,12 @@ pub struct Args {
 /// # Errors
 /// Invalid flags (before any run), a failing reference, an unwritable output folder.
 pub fn run(args: &Args) -> Result<()> {
-    let (scene, origin, params, file_options) = load_scene(&args.target)?;
+    let LoadedScene {
+        scene,
+        origin,
+        params,
+        run: file_options,
+    } = load_scene(&args.target)?;
     let info = scene.info();
     for name in &args.integrators {
         if !info.runs(name) {
@@ -96,13 +101,8 @@ pub fn run(args: &Args) -> Result<()> {
     let mut config = Config::new(info);
     config.t_end = t_end;
     config.max_run_seconds = args.max_seconds;
-    // Validates the horizon in the scene's words.
-    tumble_scenarios::RunOptions {
-        t_end: Some(t_end),
-        ..Default::default()
-    }
-    .resolve(info)
-    .map_err(|e| anyhow::anyhow!("{}: {}", info.name, flag_words(&e)))?;
+    tumble_scenarios::scene::check_horizon(t_end)
+        .map_err(|e| anyhow::anyhow!("{}: {}", info.name, flag_words(&e)))?;
     let integrators: Vec<String> = if args.integrators.is_empty() {
         info.integrators()
             .iter()
@@ -188,11 +188,16 @@ pub fn run(args: &Args) -> Result<()> {
     for ext in ["png", "svg"] {
         plot::save(&figure, &dir.join(format!("work-precision.{ext}")))?;
     }
-    let manifest = manifest_json(
-        info.name, &origin, &params, t_end, &config, &reference, &ladders,
-    );
-    let mut text = serde_json::to_string_pretty(&manifest)?;
-    text.push('\n');
+    let text = manifest::to_text(&WorkPrecisionManifest::new(
+        info.name,
+        &origin,
+        &params,
+        t_end,
+        &config,
+        &reference,
+        &ladders,
+        control_words,
+    ))?;
     output::write_whole(&dir.join("manifest.json"), text.as_bytes())?;
 
     print!("{}", summary(&ladders, t_end));
@@ -278,45 +283,6 @@ fn csv_text(ladders: &[Ladder]) -> Result<String> {
         }
     }
     Ok(String::from_utf8(w.into_inner()?)?)
-}
-
-fn manifest_json(
-    scene: &str,
-    origin: &str,
-    params: &Params,
-    t_end: f64,
-    config: &Config,
-    reference: &Reference,
-    ladders: &[Ladder],
-) -> serde_json::Value {
-    json!({
-        "command": "work-precision",
-        "tumble_version": env!("CARGO_PKG_VERSION"),
-        "scene": scene,
-        "origin": origin,
-        "parameters": params.iter().map(|(k, v)| (k.to_string(), json!(v))).collect::<serde_json::Map<_, _>>(),
-        "t_end": t_end,
-        "error": "max_i |y_i - y_ref_i| / (1 + |y_ref_i|) over the final coordinates and rates (quaternion up to sign)",
-        "wall_time": "seconds per run observing only the initial and final states: median of 5 samples (3 for runs over 0.1 s), each the mean of back-to-back runs lasting at least 5 ms",
-        "max_run_seconds": config.max_run_seconds,
-        "reference": {
-            "method": reference.method,
-            "cross_check": reference.check,
-            "agreement": reference.agreement,
-            "self_check": reference.self_check,
-            "self_agreement": reference.self_agreement,
-        },
-        "integrators": ladders.iter().map(|l| json!({
-            "name": l.integrator,
-            "order": l.order,
-            "rungs": l.rungs.len(),
-            "stopped": l.stop,
-            "failures": l.failures.iter().map(|f| json!({
-                "control": control_words(f.control),
-                "reason": f.reason,
-            })).collect::<Vec<_>>(),
-        })).collect::<Vec<_>>(),
-    })
 }
 
 /// Per integrator: rungs, the observed order (minus the fitted slope of error against steps

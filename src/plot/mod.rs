@@ -22,6 +22,7 @@
 pub mod colour;
 pub mod heatmap;
 pub mod slices;
+pub mod sweep;
 pub mod text;
 pub mod trajectory;
 pub mod work_precision;

@@ -1,7 +1,7 @@
 //! The article's classroom exercise: turn a body by Euler angles and watch its tensor; find the
 //! angles that make the off-diagonal terms vanish.
 //!
-//! Convention (DESIGN §4): the article's intrinsic ZYZ angles `(φ, θ, ψ)`, active rotation
+//! Convention (docs/design.md §2): the article's intrinsic ZYZ angles `(φ, θ, ψ)`, active rotation
 //! `R = Rz(φ) Ry(θ) Rz(ψ)` from body to space ([`EulerConvention::ARTICLE`] of
 //! `tumble-kinematics`; other conventions by name through the `*_with` functions).
 //!

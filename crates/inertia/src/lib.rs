@@ -1,6 +1,11 @@
 //! Mass properties of rigid bodies: point masses, primitives with closed forms, and closed
 //! triangle meshes, computed once in the body frame.
 //!
+//! "The article" in these docs is Andy Rundquist's blog post "Rigid bodies, formulation and
+//! examples" (Euler angles ZYZ, the bead on a driven, spinning and free hoop); "the lecture" is
+//! Harvard Physics 151, lecture 9, "Rigid Body Motion". The repository's `docs/design.md`
+//! summarizes what the code takes from them.
+//!
 //! # Conventions
 //!
 //! SI units throughout (kg, m, kg·m²). A [`MassProperties`] holds the mass, the centre of mass

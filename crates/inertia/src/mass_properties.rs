@@ -15,7 +15,7 @@ use crate::sum::MomentSums;
 ///   mass**, with components in the body frame (kg·m²).
 ///
 /// Kinetic energy of rotation is `T = ½ ω·(I ω)` with `ω` in the body frame, and `I` is
-/// constant there: compute it once (DESIGN §1).
+/// constant there: compute it once (docs/design.md §1).
 ///
 /// # Invariants
 ///
@@ -75,7 +75,7 @@ impl PointMass {
 /// The parallel-axis term `M (|d|² 𝟙 − d dᵀ)`: the inertia about a point `O` of a point mass `M`
 /// at `O + d`.
 ///
-/// `I_O = I_cm + parallel_axis_term(M, c − O)` (Steiner's theorem; DESIGN §1).
+/// `I_O = I_cm + parallel_axis_term(M, c − O)` (Steiner's theorem; docs/design.md §1).
 #[must_use]
 pub fn parallel_axis_term(mass: f64, offset: &Vector3<f64>) -> Matrix3<f64> {
     (Matrix3::identity() * offset.norm_squared() - offset * offset.transpose()) * mass
@@ -230,7 +230,7 @@ impl MassProperties {
     }
 
     /// The tensor about an arbitrary point `point` (body frame): the parallel-axis theorem
-    /// `I_O = I_cm + M (|d|² 𝟙 − d dᵀ)` with `d = c − O` (DESIGN §1).
+    /// `I_O = I_cm + M (|d|² 𝟙 − d dᵀ)` with `d = c − O` (docs/design.md §1).
     #[must_use]
     pub fn inertia_about(&self, point: &Point3<f64>) -> Matrix3<f64> {
         self.inertia + parallel_axis_term(self.mass, &(self.center_of_mass - point))

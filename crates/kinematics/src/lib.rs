@@ -4,6 +4,11 @@
 //! in all twelve sequences, angular velocity from Euler rates and back, and the kinematics of
 //! rotating frames.
 //!
+//! "The article" in these docs is Andy Rundquist's blog post "Rigid bodies, formulation and
+//! examples" (Euler angles ZYZ, the bead on a driven, spinning and free hoop); "the lecture" is
+//! Harvard Physics 151, lecture 9, "Rigid Body Motion". The repository's `docs/design.md`
+//! summarizes what the code takes from them.
+//!
 //! ## Design choices
 //!
 //! * **Types are nalgebra's.** Rotations are [`nalgebra::Rotation3`] or

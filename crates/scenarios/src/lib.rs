@@ -2,6 +2,11 @@
 //!
 //! Where a physical scene becomes the smallest model it needs.
 //!
+//! "The article" in these docs is Andy Rundquist's blog post "Rigid bodies, formulation and
+//! examples" (Euler angles ZYZ, the bead on a driven, spinning and free hoop); "the lecture" is
+//! Harvard Physics 151, lecture 9, "Rigid Body Motion". The repository's `docs/design.md`
+//! summarizes what the code takes from them.
+//!
 //! ## Design choices
 //!
 //! * **Lagrangians by automatic differentiation.** A model is a Lagrangian `L = T − V` written

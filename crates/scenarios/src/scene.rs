@@ -222,13 +222,7 @@ impl RunOptions {
         let kind = info.kind_for(method).ok_or_else(unsupported)?;
         let adaptive = method.properties.adaptive;
         let t_end = self.t_end.unwrap_or(info.default_t_end);
-        if !(t_end.is_finite() && t_end > 0.0) {
-            return Err(SceneError::InvalidOption {
-                option: "t_end",
-                value: t_end,
-                reason: "the horizon must be finite and positive".into(),
-            });
-        }
+        check_horizon(t_end)?;
         let step = match self.step {
             Some(s) => s,
             None if adaptive => StepControl::Tolerance(1e-10),
@@ -250,6 +244,22 @@ impl RunOptions {
             t_end,
             every,
             observe: self.observe,
+        })
+    }
+}
+
+/// Checks a horizon: finite and positive.
+///
+/// # Errors
+/// [`SceneError::InvalidOption`] naming `t_end`.
+pub fn check_horizon(t_end: f64) -> Result<(), SceneError> {
+    if t_end.is_finite() && t_end > 0.0 {
+        Ok(())
+    } else {
+        Err(SceneError::InvalidOption {
+            option: "t_end",
+            value: t_end,
+            reason: "the horizon must be finite and positive".into(),
         })
     }
 }

@@ -1,5 +1,5 @@
 //! Work–precision: the error at the final time against the cost of getting it, for every
-//! integrator that runs a scene (DESIGN §6).
+//! integrator that runs a scene (docs/design.md §4).
 //!
 //! For each integrator, a ladder of steps (or tolerances, for the adaptive `dp5`/`dop853`) runs
 //! from an error of about `1e-2` down to the round-off floor or a time budget. Each rung records

@@ -446,7 +446,10 @@ fn results_are_the_same_bytes_for_one_and_two_threads() {
 
 #[test]
 fn a_cancelled_sweep_resumes_to_the_same_results() {
-    let def = small();
+    // 200 points: the one worker cannot finish them all before the calling thread, which
+    // receives the rows, has seen two and cancelled (with 6 points it sometimes did, on a
+    // loaded machine, and the run was complete).
+    let def = parse(&SMALL.replace("count = 3", "count = 100")).unwrap();
     let dir = temp();
     let reference = results(&def, &dir.path().join("ref"), &threads(2));
     let cut = dir.path().join("cut");
@@ -475,7 +478,7 @@ fn a_cancelled_sweep_resumes_to_the_same_results() {
     };
     let report = run(&def, &cut, &resumed, &mut |_| {}).unwrap();
     assert_eq!(report.resumed, partial.rows.len() as u64);
-    assert_eq!(report.computed, 6 - report.resumed);
+    assert_eq!(report.computed, def.points() - report.resumed);
     assert_eq!(results_csv(&def, &report.rows).unwrap(), reference);
     // Resuming a complete sweep computes nothing and gives the same file.
     let again = run(&def, &cut, &resumed, &mut |_| {}).unwrap();

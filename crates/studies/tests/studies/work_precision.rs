@@ -23,7 +23,7 @@ fn config(t_end: f64, max_steps: u64) -> Config {
 
 /// The observed order of each (scene, integrator) on a ladder over `t_end` = 2 s: minus the
 /// slope of `log error` against `log steps` over the rungs with errors in `[1e-12, 1e-4]`,
-/// within 0.3 of the registry's order (DESIGN §6). References: the exact flow (free body),
+/// within 0.3 of the registry's order (docs/design.md §4). References: the exact flow (free body),
 /// Gauss–Legendre s = 6 at a 16 times smaller step than the scene's default (the others).
 #[test]
 fn work_precision_slopes_match_the_methods_orders() {

@@ -1,0 +1,319 @@
+//! The `manifest.json` of sweep and work–precision folders: how the results were made, as
+//! `Serialize` types. Fields are declared in alphabetical order, the order in which the files
+//! have always listed them.
+
+use std::collections::BTreeMap;
+
+use serde::Serialize;
+use tumble_scenarios::{Params, StepControl};
+use tumble_studies::sweep::{AxisValues, Sampling, Shard, SweepDefinition, SweepReport};
+use tumble_studies::work_precision::{Config, Ladder, Reference};
+
+/// `(dt, tol)` of a step control: one of them is `None`.
+fn step_fields(step: StepControl) -> (Option<f64>, Option<f64>) {
+    match step {
+        StepControl::Fixed(h) => (Some(h), None),
+        StepControl::Tolerance(t) => (None, Some(t)),
+    }
+}
+
+/// The fixed parameters (those not swept).
+fn fixed(params: &Params, swept: &[&str]) -> BTreeMap<String, f64> {
+    params
+        .iter()
+        .filter(|(n, _)| !swept.contains(n))
+        .map(|(n, v)| (n.to_string(), v))
+        .collect()
+}
+
+/// One axis of a sweep.
+#[derive(Serialize)]
+#[serde(untagged)]
+enum AxisJson {
+    List {
+        parameter: &'static str,
+        unit: &'static str,
+        values: Vec<f64>,
+    },
+    Range {
+        count: Option<u64>,
+        parameter: &'static str,
+        range: [f64; 2],
+        spacing: String,
+        unit: &'static str,
+    },
+}
+
+/// The run of every point.
+#[derive(Serialize)]
+struct RunJson {
+    dt: Option<f64>,
+    integrator: &'static str,
+    t_end: f64,
+    tol: Option<f64>,
+}
+
+/// How the points are laid out.
+#[derive(Serialize)]
+#[serde(tag = "kind", rename_all = "lowercase")]
+enum SamplingJson {
+    Grid,
+    Random {
+        generator: &'static str,
+        samples: u64,
+        seed: u64,
+    },
+}
+
+/// A sweep definition.
+#[derive(Serialize)]
+struct DefinitionJson {
+    axes: Vec<AxisJson>,
+    metrics: Vec<&'static str>,
+    origin: String,
+    parameters: BTreeMap<String, f64>,
+    points: u64,
+    run: RunJson,
+    sampling: SamplingJson,
+    scene: &'static str,
+    tilt_threshold: Option<f64>,
+}
+
+impl DefinitionJson {
+    fn new(def: &SweepDefinition) -> Self {
+        let swept: Vec<&str> = def.axes.iter().map(|a| a.parameter).collect();
+        let (dt, tol) = step_fields(def.plan.step);
+        DefinitionJson {
+            axes: def
+                .axes
+                .iter()
+                .map(|a| match &a.values {
+                    AxisValues::List(v) => AxisJson::List {
+                        parameter: a.parameter,
+                        unit: a.unit,
+                        values: v.clone(),
+                    },
+                    AxisValues::Range {
+                        start,
+                        end,
+                        count,
+                        spacing,
+                    } => AxisJson::Range {
+                        count: *count,
+                        parameter: a.parameter,
+                        range: [*start, *end],
+                        spacing: format!("{spacing:?}").to_lowercase(),
+                        unit: a.unit,
+                    },
+                })
+                .collect(),
+            metrics: def.metrics.iter().map(|m| m.name()).collect(),
+            origin: def.origin.clone(),
+            parameters: fixed(&def.params, &swept),
+            points: def.points(),
+            run: RunJson {
+                dt,
+                integrator: def.plan.integrator(),
+                t_end: def.plan.t_end,
+                tol,
+            },
+            sampling: match def.sampling {
+                Sampling::Grid => SamplingJson::Grid,
+                Sampling::Random { samples, seed } => SamplingJson::Random {
+                    generator: "splitmix64",
+                    samples,
+                    seed,
+                },
+            },
+            scene: def.scene.info().name,
+            tilt_threshold: def.tilt_threshold,
+        }
+    }
+}
+
+/// A failed point.
+#[derive(Serialize)]
+struct FailureJson {
+    index: u64,
+    reason: String,
+    status: &'static str,
+}
+
+/// `manifest.json` of a sweep folder.
+#[derive(Serialize)]
+pub struct SweepManifest {
+    command: String,
+    computed_points: u64,
+    definition: DefinitionJson,
+    definition_toml: String,
+    dt: Option<f64>,
+    failed: usize,
+    failures: Vec<FailureJson>,
+    files: Vec<String>,
+    integrator: &'static str,
+    ok: usize,
+    points: u64,
+    points_per_second: Option<f64>,
+    resumed_points: u64,
+    shard: String,
+    t_end: f64,
+    threads: usize,
+    tol: Option<f64>,
+    tumble_version: &'static str,
+    wall_time_s: f64,
+}
+
+impl SweepManifest {
+    /// The manifest of `def` run (or merged, by `command`) into `report`, with the plot files
+    /// written.
+    #[must_use]
+    pub fn new(
+        def: &SweepDefinition,
+        report: &SweepReport,
+        shard: Shard,
+        command: &str,
+        plots: &[String],
+    ) -> Self {
+        let failures: Vec<FailureJson> = report
+            .failures()
+            .map(|r| FailureJson {
+                index: r.index,
+                reason: r.reason.clone(),
+                status: r.status.name(),
+            })
+            .collect();
+        let (dt, tol) = step_fields(def.plan.step);
+        let mut files = vec![
+            "sweep.toml".to_string(),
+            "journal.csv".to_string(),
+            "results.csv".to_string(),
+        ];
+        files.extend(plots.iter().cloned());
+        SweepManifest {
+            command: command.to_string(),
+            computed_points: report.computed,
+            definition: DefinitionJson::new(def),
+            definition_toml: def.to_toml(),
+            dt,
+            failed: failures.len(),
+            ok: report.rows.len() - failures.len(),
+            failures,
+            files,
+            integrator: def.plan.integrator(),
+            points: report.total,
+            points_per_second: report.points_per_second(),
+            resumed_points: report.resumed,
+            shard: shard.to_string(),
+            t_end: def.plan.t_end,
+            threads: report.threads,
+            tol,
+            tumble_version: env!("CARGO_PKG_VERSION"),
+            wall_time_s: report.elapsed.as_secs_f64(),
+        }
+    }
+}
+
+/// The reference of a work–precision study.
+#[derive(Serialize)]
+struct ReferenceJson {
+    agreement: f64,
+    cross_check: String,
+    method: String,
+    self_agreement: f64,
+    self_check: String,
+}
+
+/// A rung that failed.
+#[derive(Serialize)]
+struct FailedRungJson {
+    control: String,
+    reason: String,
+}
+
+/// One integrator's ladder.
+#[derive(Serialize)]
+struct LadderJson {
+    failures: Vec<FailedRungJson>,
+    name: String,
+    order: Option<u32>,
+    rungs: usize,
+    stopped: String,
+}
+
+/// `manifest.json` of a work–precision folder.
+#[derive(Serialize)]
+pub struct WorkPrecisionManifest {
+    command: &'static str,
+    error: &'static str,
+    integrators: Vec<LadderJson>,
+    max_run_seconds: f64,
+    origin: String,
+    parameters: BTreeMap<String, f64>,
+    reference: ReferenceJson,
+    scene: String,
+    t_end: f64,
+    tumble_version: &'static str,
+    wall_time: &'static str,
+}
+
+impl WorkPrecisionManifest {
+    /// The manifest of the ladders of `scene` (from `origin`) at `params` over `[0, t_end]`;
+    /// `control_words` describes a step or tolerance.
+    #[must_use]
+    pub fn new(
+        scene: &str,
+        origin: &str,
+        params: &Params,
+        t_end: f64,
+        config: &Config,
+        reference: &Reference,
+        ladders: &[Ladder],
+        control_words: impl Fn(StepControl) -> String,
+    ) -> Self {
+        WorkPrecisionManifest {
+            command: "work-precision",
+            error: "max_i |y_i - y_ref_i| / (1 + |y_ref_i|) over the final coordinates and rates (quaternion up to sign)",
+            integrators: ladders
+                .iter()
+                .map(|l| LadderJson {
+                    failures: l
+                        .failures
+                        .iter()
+                        .map(|f| FailedRungJson {
+                            control: control_words(f.control),
+                            reason: f.reason.clone(),
+                        })
+                        .collect(),
+                    name: l.integrator.clone(),
+                    order: l.order,
+                    rungs: l.rungs.len(),
+                    stopped: l.stop.clone(),
+                })
+                .collect(),
+            max_run_seconds: config.max_run_seconds,
+            origin: origin.to_string(),
+            parameters: fixed(params, &[]),
+            reference: ReferenceJson {
+                agreement: reference.agreement,
+                cross_check: reference.check.clone(),
+                method: reference.method.clone(),
+                self_agreement: reference.self_agreement,
+                self_check: reference.self_check.clone(),
+            },
+            scene: scene.to_string(),
+            t_end,
+            tumble_version: env!("CARGO_PKG_VERSION"),
+            wall_time: "seconds per run observing only the initial and final states: median of 5 samples (3 for runs over 0.1 s), each the mean of back-to-back runs lasting at least 5 ms",
+        }
+    }
+}
+
+/// Serializes a manifest as pretty JSON with a final newline.
+///
+/// # Errors
+/// If serialization fails.
+pub fn to_text(manifest: &impl Serialize) -> serde_json::Result<String> {
+    let mut text = serde_json::to_string_pretty(manifest)?;
+    text.push('\n');
+    Ok(text)
+}

@@ -1,0 +1,195 @@
+//! The figures of a sweep folder: the map of the first metric over a two-axis grid, with the
+//! scene's guides ([`tumble_scenarios::Scene::map_guides`]), and its slices.
+
+use std::path::Path;
+
+use anyhow::Result;
+use tumble_scenarios::{Guide, StepControl};
+use tumble_studies::sweep::{Metric, PointRow, Sampling, Status, SweepDefinition};
+
+use crate::plot;
+
+/// The label of an axis: `omega0 (rad/s)`.
+pub(crate) fn axis_label(name: &str, unit: &str) -> String {
+    if unit.is_empty() {
+        name.to_string()
+    } else {
+        format!("{name} ({unit})")
+    }
+}
+
+fn metric_label(m: Metric) -> String {
+    if m.unit().is_empty() {
+        m.description().to_string()
+    } else {
+        format!("{} ({})", m.description(), m.unit())
+    }
+}
+
+/// The plot files' stem for metric `m`: `tilt` for the tilt metrics, else the metric's name.
+pub(crate) fn plot_stem(m: Metric) -> &'static str {
+    if m.needs_tilt() { "tilt" } else { m.name() }
+}
+
+/// The fixed parameters, for subtitles.
+fn fixed_parameters(def: &SweepDefinition) -> String {
+    def.params
+        .iter()
+        .filter(|(n, _)| !def.axes.iter().any(|a| a.parameter == *n))
+        .map(|(n, v)| format!("{n} = {}", round_for_label(v)))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// A value with at most six significant digits, for labels.
+pub(crate) fn round_for_label(v: f64) -> String {
+    let s = format!("{v:.6}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    if s.len() > 10 {
+        format!("{v:.4e}")
+    } else {
+        s.to_string()
+    }
+}
+
+/// Draws the map and slices of a complete grid sweep; returns the file names written.
+pub(crate) fn draw_plots(
+    def: &SweepDefinition,
+    dir: &Path,
+    rows: &[PointRow],
+) -> Result<Vec<String>> {
+    let Some(&metric) = def.metrics.first() else {
+        return Ok(Vec::new());
+    };
+    if def.sampling != Sampling::Grid || def.axes.len() > 2 {
+        return Ok(Vec::new());
+    }
+    let info = def.scene.info();
+    let stem = plot_stem(metric);
+    let value = |row: &PointRow| (row.status == Status::Ok).then(|| row.metrics[0]).flatten();
+    let x_axis = &def.axes[0];
+    let xs = x_axis.grid_values();
+    let increasing = |v: &[f64]| v.windows(2).all(|w| w[0] < w[1]);
+    let horizon = format!("over t in [0, {}] s", def.plan.t_end);
+    let subtitle = format!(
+        "{}, {}; {}",
+        def.plan.integrator(),
+        step_words(def.plan.step),
+        fixed_parameters(def)
+    );
+    let mut written = Vec::new();
+    let x_label = axis_label(x_axis.parameter, x_axis.unit);
+    if def.axes.len() == 1 {
+        let slice = plot::slices::Slice {
+            label: metric.name().to_string(),
+            points: xs.iter().copied().zip(rows.iter().map(value)).collect(),
+        };
+        let fig = plot::slices::figure(
+            format!("{} {horizon}", metric.description()),
+            subtitle,
+            &x_label,
+            &metric_label(metric),
+            &[slice],
+        );
+        for ext in ["png", "svg"] {
+            let name = format!("{stem}-slices.{ext}");
+            plot::save(&fig, &dir.join(&name))?;
+            written.push(name);
+        }
+        return Ok(written);
+    }
+    let y_axis = &def.axes[1];
+    let ys = y_axis.grid_values();
+    let (nx, ny) = (xs.len(), ys.len());
+    // values[j][i] at (xs[i], ys[j]); points are numbered with the last (y) axis fastest.
+    let mut grid = vec![vec![None; nx]; ny];
+    for row in rows {
+        let (i, j) = ((row.index as usize) / ny, (row.index as usize) % ny);
+        grid[j][i] = value(row);
+    }
+    if increasing(&xs) && increasing(&ys) {
+        let (markers, curves) = guides(def, &xs);
+        let map = plot::heatmap::Heatmap {
+            title: format!("{}: {} {horizon}", info.name, metric.description()),
+            subtitle: subtitle.clone(),
+            x_label: x_label.clone(),
+            y_label: axis_label(y_axis.parameter, y_axis.unit),
+            value_label: metric_label(metric),
+            xs: xs.clone(),
+            ys: ys.clone(),
+            values: grid.clone(),
+            range: None,
+            markers,
+            curves,
+            size: (1000, 720),
+        };
+        for ext in ["png", "svg"] {
+            let name = format!("{stem}-map.{ext}");
+            plot::save(&map, &dir.join(&name))?;
+            written.push(name);
+        }
+    }
+    let slices: Vec<plot::slices::Slice> = plot::slices::pick_rows(ny, 5)
+        .into_iter()
+        .map(|j| plot::slices::Slice {
+            label: format!(
+                "{} = {}{}",
+                y_axis.parameter,
+                round_for_label(ys[j]),
+                if y_axis.unit.is_empty() {
+                    String::new()
+                } else {
+                    format!(" {}", y_axis.unit)
+                }
+            ),
+            points: xs.iter().copied().zip(grid[j].iter().copied()).collect(),
+        })
+        .collect();
+    let fig = plot::slices::figure(
+        format!(
+            "{}: {} {horizon}, against {}",
+            info.name,
+            metric.description(),
+            x_axis.parameter
+        ),
+        subtitle,
+        &x_label,
+        &metric_label(metric),
+        &slices,
+    );
+    for ext in ["png", "svg"] {
+        let name = format!("{stem}-slices.{ext}");
+        plot::save(&fig, &dir.join(&name))?;
+        written.push(name);
+    }
+    Ok(written)
+}
+
+/// The scene's guides for a map of `def` whose first axis takes the values `xs`: vertical
+/// markers and curves.
+fn guides(
+    def: &SweepDefinition,
+    xs: &[f64],
+) -> (Vec<plot::heatmap::Marker>, Vec<plot::heatmap::Curve>) {
+    let axes: Vec<&str> = def.axes.iter().map(|a| a.parameter).collect();
+    let range = (
+        xs.first().copied().unwrap_or(0.0),
+        xs.last().copied().unwrap_or(0.0),
+    );
+    let (mut markers, mut curves) = (Vec::new(), Vec::new());
+    for guide in def.scene.map_guides(&def.params, &axes, range) {
+        match guide {
+            Guide::Vertical { x, label } => markers.push(plot::heatmap::Marker { x, label }),
+            Guide::Curve { label, points } => curves.push(plot::heatmap::Curve { label, points }),
+        }
+    }
+    (markers, curves)
+}
+
+/// A sweep's step or tolerance in words: `fixed step dt = 0.01 s`, `tolerance 1e-10`.
+pub(crate) fn step_words(step: StepControl) -> String {
+    match step {
+        StepControl::Fixed(h) => format!("fixed step dt = {h} s"),
+        StepControl::Tolerance(tol) => format!("tolerance {tol:e}"),
+    }
+}
