@@ -411,8 +411,9 @@ fn long(
         .iter()
         .map(|m| (m.clone(), StepControl::Fixed(h)))
         .collect();
-    // DOP853 at the cost of the scene's default method (or the first one), probed on 2000 steps.
-    let adaptive = ["dop853", "dp5"].into_iter().find(|a| info.runs(a));
+    // The adaptive method of highest order at the cost of the scene's default method (or the
+    // first one), probed on 2000 steps.
+    let adaptive = work_precision::highest_order(info, |m| m.properties.adaptive).map(|m| m.name);
     let mut matched = String::new();
     if let Some(a) = adaptive {
         let probe = (2000.0 * h).min(t_end);

@@ -28,7 +28,7 @@
 
 use std::time::Instant;
 
-use tumble_integrators::registry::{self, Order};
+use tumble_integrators::registry::{self, Family, MethodInfo, Order};
 use tumble_integrators::verification::fit_power_law;
 
 use tumble_integrators::Flow;
@@ -258,34 +258,61 @@ fn describe(integrator: &str, control: StepControl) -> String {
     }
 }
 
+/// The method of highest order (the exact flow above all) among those that run `info`'s scene
+/// and satisfy `pred`; the first in registry order among equals.
+#[must_use]
+pub fn highest_order(
+    info: &SceneInfo,
+    pred: impl Fn(&MethodInfo) -> bool,
+) -> Option<&'static MethodInfo> {
+    let rank = |m: &MethodInfo| m.order.value().unwrap_or(u32::MAX);
+    registry::methods()
+        .iter()
+        .filter(|m| info.kind_for(m).is_some() && pred(m))
+        .fold(None, |best: Option<&'static MethodInfo>, m| match best {
+            Some(b) if rank(b) >= rank(m) => Some(b),
+            _ => Some(m),
+        })
+}
+
 /// The reference solution of `scene` at `t_end` (module doc).
 ///
 /// # Errors
 /// A failing reference run.
 pub fn reference(scene: &dyn Scene, params: &Params, t_end: f64) -> Result<Reference, SceneError> {
     let info = scene.info();
-    let has = |name: &str| info.runs(name);
     let h_small = refine_step(info.default_step / 16.0, t_end);
-    let dop853 = StepControl::Tolerance(1e-13);
-    let gauss = ["gauss12", "gauss10", "gauss8"]
-        .into_iter()
-        .find(|g| has(g));
-    let (method, control, check, check_control, self_control) = if has("exact") {
+    let tight = StepControl::Tolerance(1e-13);
+    let exact = highest_order(info, |m| m.properties.exact);
+    let gauss = highest_order(info, |m| m.family == Family::GaussLegendre && m.order >= 8);
+    let adaptive = highest_order(info, |m| m.properties.adaptive);
+    let explicit_fixed = highest_order(info, |m| {
+        m.family == Family::ExplicitRungeKutta && !m.properties.adaptive
+    });
+    let missing = |what: &str| SceneError::InvalidOption {
+        option: "integrator",
+        value: f64::NAN,
+        reason: format!("scene `{}` has no {what} for a reference", info.name),
+    };
+    let adaptive = adaptive.ok_or_else(|| missing("adaptive method"))?.name;
+    let (method, control, check, check_control, self_control) = if let Some(e) = exact {
         // One step of the exact flow over the whole horizon.
-        ("exact", StepControl::Fixed(t_end), "dop853", dop853, None)
+        (e.name, StepControl::Fixed(t_end), adaptive, tight, None)
     } else if let Some(g) = gauss {
         (
-            g,
+            g.name,
             StepControl::Fixed(h_small),
-            "dop853",
-            dop853,
+            adaptive,
+            tight,
             Some(StepControl::Fixed(refine_step(h_small / 2.0, t_end))),
         )
     } else {
         (
-            "dop853",
-            dop853,
-            "rk4",
+            adaptive,
+            tight,
+            explicit_fixed
+                .ok_or_else(|| missing("fixed-step Runge–Kutta method"))?
+                .name,
             StepControl::Fixed(h_small),
             Some(StepControl::Tolerance(1e-14)),
         )
@@ -305,7 +332,7 @@ pub fn reference(scene: &dyn Scene, params: &Params, t_end: f64) -> Result<Refer
     };
     Ok(Reference {
         state,
-        method: if method == "exact" {
+        method: if exact.is_some() {
             "exact flow (one step over the horizon)".to_string()
         } else {
             describe(method, control)
