@@ -52,9 +52,22 @@ pub struct Args {
     /// Horizon in seconds: integrate over [0, T].
     #[arg(long = "t-end", value_name = "T", allow_negative_numbers = true)]
     pub t_end: Option<f64>,
-    /// Write every N-th step (the first row is always the initial state).
-    #[arg(long, value_name = "N")]
+    /// Write every N-th step (the first row is always the initial state, the last the final
+    /// state).
+    #[arg(long, value_name = "N", conflicts_with_all = ["at", "output_dt"])]
     pub every: Option<u64>,
+    /// Write rows at exactly these times (comma-separated, increasing, in [0, T]), from the
+    /// integrator's dense output, and the final state; the steps are the same as without.
+    #[arg(
+        long,
+        value_name = "T1,T2,...",
+        conflicts_with = "output_dt",
+        allow_hyphen_values = true
+    )]
+    pub at: Option<String>,
+    /// Write rows every DT seconds from 0 (from dense output), and the final state.
+    #[arg(long = "output-dt", value_name = "DT", allow_negative_numbers = true)]
+    pub output_dt: Option<f64>,
     /// Write the CSV to FILE instead of stdout (`-` is stdout).
     #[arg(short = 'o', long = "output", value_name = "FILE.csv")]
     pub output: Option<PathBuf>,
@@ -163,6 +176,16 @@ fn setup(args: &Args) -> Result<Setup> {
     }
     if args.every.is_some() {
         options.every = args.every;
+        options.at = None;
+        options.output_dt = None;
+    }
+    if let Some(raw) = &args.at {
+        options.at = Some(parse_times(raw)?);
+        options.output_dt = None;
+    }
+    if args.output_dt.is_some() {
+        options.output_dt = args.output_dt;
+        options.at = None;
     }
     let plan = options
         .resolve(scene.info())
@@ -173,6 +196,21 @@ fn setup(args: &Args) -> Result<Setup> {
         params,
         plan,
     })
+}
+
+/// Parses `--at T1,T2,...`: plain numbers (their order and range are checked with the plan).
+fn parse_times(raw: &str) -> Result<Vec<f64>> {
+    raw.split(',')
+        .map(|p| {
+            let p = p.trim();
+            p.parse::<f64>().map_err(|_| {
+                anyhow::anyhow!(
+                    "--at {raw}: `{p}` is not a number (give times in seconds, comma-separated, \
+                     e.g. --at 0.5,1,2.5)"
+                )
+            })
+        })
+        .collect()
 }
 
 /// A run-option error in the words of the command line (`--dt` for `dt`, `--t-end` for
@@ -189,9 +227,15 @@ pub(crate) fn flag_words(e: &SceneError) -> String {
                 "dt" => "--dt",
                 "tol" => "--tol",
                 "every" => "--every",
+                "at" => "--at",
+                "output_dt" => "--output-dt",
                 _ => return e.to_string(),
             };
-            format!("{flag} {}: {reason}", number(*value))
+            if value.is_nan() && matches!(*option, "at" | "output_dt") {
+                format!("{flag}: {reason}")
+            } else {
+                format!("{flag} {}: {reason}", number(*value))
+            }
         }
         SceneError::UnsupportedIntegrator { .. } => format!("--integrator: {e}"),
         _ => e.to_string(),
@@ -467,11 +511,21 @@ pub fn run(args: &Args) -> Result<()> {
         "energy       max relative error {:.3e}",
         summary.max_energy_rel_err
     );
+    let cadence = match &r.times {
+        Some(times) => format!(
+            "at {} chosen time{} from dense output, and the final state",
+            times.len(),
+            if times.len() == 1 { "" } else { "s" }
+        ),
+        None => format!(
+            "every {} step{}, and the final state",
+            r.every,
+            if r.every == 1 { "" } else { "s" }
+        ),
+    };
     eprintln!(
-        "output       {} rows (every {} step{}) to {destination}{}",
+        "output       {} rows ({cadence}) to {destination}{}",
         summary.rows,
-        r.every,
-        if r.every == 1 { "" } else { "s" },
         if closed {
             ", closed early by the reader"
         } else {

@@ -525,3 +525,126 @@ fn set_overrides_on_a_scene_file_are_validated_too() {
         &["--set m=-0.2", "`m` = -0.2"],
     );
 }
+
+#[test]
+fn rows_at_chosen_times_and_every_interval_end_with_the_final_state() {
+    let dir = TempDir::new().unwrap();
+    let out = succeeds(
+        dir.path(),
+        &[
+            "simulate",
+            "coriolis-drop",
+            "--output-dt",
+            "1",
+            "--integrator",
+            "gauss8",
+            "--dt",
+            "0.01",
+        ],
+    );
+    let text = String::from_utf8(out.stdout.clone()).unwrap();
+    let times: Vec<f64> = text
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').next().unwrap().parse().unwrap())
+        .collect();
+    // Rows at 0, 1, 2, 3, 4 s and the landing (the terminal event) at about 4.515 s.
+    assert_eq!(&times[..5], &[0.0, 1.0, 2.0, 3.0, 4.0]);
+    assert_eq!(times.len(), 6);
+    assert!((times[5] - 4.5152).abs() < 1e-3, "{times:?}");
+    assert!(stderr(&out).contains("at 61 chosen times from dense output"));
+    let out = succeeds(
+        dir.path(),
+        &[
+            "simulate",
+            "free-body",
+            "--dt",
+            "0.001",
+            "--t-end",
+            "1",
+            "--every",
+            "300",
+        ],
+    );
+    let last = String::from_utf8(out.stdout).unwrap();
+    assert!(last.lines().last().unwrap().starts_with("1.0,"), "{last}");
+}
+
+#[test]
+fn bad_output_times_are_refused_before_running() {
+    fails(
+        &[],
+        &[
+            "simulate",
+            "free-hoop",
+            "--integrator",
+            "dop853",
+            "--at",
+            "1,x",
+            "-o",
+            "x.csv",
+        ],
+        &["--at 1,x: `x` is not a number"],
+    );
+    fails(
+        &[],
+        &[
+            "simulate",
+            "free-hoop",
+            "--integrator",
+            "dop853",
+            "--at",
+            "2,1",
+            "-o",
+            "x.csv",
+        ],
+        &["--at 1: comes after 2: times must increase"],
+    );
+    fails(
+        &[],
+        &[
+            "simulate",
+            "free-hoop",
+            "--integrator",
+            "dop853",
+            "--at",
+            "1,1",
+            "-o",
+            "x.csv",
+        ],
+        &["--at 1: given twice"],
+    );
+    fails(
+        &[],
+        &[
+            "simulate",
+            "free-hoop",
+            "--integrator",
+            "dop853",
+            "--at",
+            "0.5,20",
+            "-o",
+            "x.csv",
+        ],
+        &["--at 20: outside [0, t_end = 10]"],
+    );
+    fails(
+        &[],
+        &["simulate", "free-hoop", "--at", "0.5", "-o", "x.csv"],
+        &["--at: `lgvi` has no dense output", "dop853"],
+    );
+    fails(
+        &[],
+        &[
+            "simulate",
+            "free-hoop",
+            "--integrator",
+            "dop853",
+            "--output-dt",
+            "-1",
+            "-o",
+            "x.csv",
+        ],
+        &["--output-dt -1: must be positive"],
+    );
+}

@@ -33,10 +33,19 @@ pub enum Flow {
     Stop,
 }
 
-/// Watches the run: called at the start, every `n` steps, and at the end.
+/// Watches the run: called at the start, every `n` steps, and at the end; and at the output
+/// times asked for with [`Driver::output_at`].
 pub trait Observer<S> {
     /// Called with the current time and state; the default does nothing.
     fn observe(&mut self, t: f64, state: &S) -> Flow {
+        let _ = (t, state);
+        Flow::Continue
+    }
+
+    /// Called at each output time of [`Driver::output_at`], in order, with the state there
+    /// from the stepper's dense output (the step's own state when a step ends exactly there).
+    /// The step sequence is the same with or without output times. The default does nothing.
+    fn output(&mut self, t: f64, state: &S) -> Flow {
         let _ = (t, state);
         Flow::Continue
     }
@@ -152,6 +161,7 @@ pub struct Driver<'a> {
     max_steps: u64,
     h_max: f64,
     cancel: Option<&'a dyn Fn() -> bool>,
+    outputs: &'a [f64],
 }
 
 impl<'a> Driver<'a> {
@@ -181,6 +191,7 @@ impl<'a> Driver<'a> {
             max_steps: u64::MAX,
             h_max: t_end - t0,
             cancel: None,
+            outputs: &[],
         })
     }
 
@@ -218,6 +229,36 @@ impl<'a> Driver<'a> {
             reason: "must be finite and positive",
         })?;
         self.h_max = h_max;
+        Ok(self)
+    }
+
+    /// Also observe the states at `times` ([`Observer::output`]), from the stepper's dense
+    /// output: only runs with dense output take them ([`Driver::run_fixed_with_events`],
+    /// [`Driver::run_adaptive`]).
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] for a time that is not finite, outside `[t₀, t_end]`, or not
+    /// after the one before it.
+    pub fn output_at(mut self, times: &'a [f64]) -> Result<Self, Error> {
+        let mut previous = f64::NEG_INFINITY;
+        for &t in times {
+            if !(t.is_finite() && t >= self.t0 && t <= self.t_end) {
+                return Err(Error::InvalidParameter {
+                    name: "output time",
+                    value: t,
+                    reason: "must lie in [t0, t_end]",
+                });
+            }
+            if !(t > previous) {
+                return Err(Error::InvalidParameter {
+                    name: "output time",
+                    value: t,
+                    reason: "output times must increase strictly",
+                });
+            }
+            previous = t;
+        }
+        self.outputs = times;
         Ok(self)
     }
 
@@ -273,6 +314,14 @@ impl<'a> Driver<'a> {
         h: f64,
         observer: &mut O,
     ) -> Result<Report<St::State>, Error> {
+        if let Some(&t) = self.outputs.first() {
+            return Err(Error::InvalidParameter {
+                name: "output time",
+                value: t,
+                reason: "output at chosen times needs a stepper with dense output \
+                         (run_fixed_with_events)",
+            });
+        }
         self.fixed_loop(
             stepper,
             problem,
@@ -301,7 +350,7 @@ impl<'a> Driver<'a> {
         St::State: VectorState,
         O: Observer<St::State>,
     {
-        let mut tracker = EventTracker::new(events);
+        let mut tracker = EventTracker::new(events, self.outputs);
         self.fixed_loop(stepper, problem, state, h, observer, Some(&mut tracker))
     }
 
@@ -322,8 +371,11 @@ impl<'a> Driver<'a> {
             status: Status::Completed,
             events: Vec::new(),
         };
-        if let Some(ev) = events.as_deref_mut() {
-            ev.start(self.t0, state);
+        if let Some(ev) = events.as_deref_mut()
+            && ev.start(self.t0, state, observer) == Flow::Stop
+        {
+            report.status = Status::Stopped;
+            return Ok(report);
         }
         if observer.observe(self.t0, state) == Flow::Stop {
             report.status = Status::Stopped;
@@ -361,13 +413,21 @@ impl<'a> Driver<'a> {
                 });
             }
             report.steps += 1;
-            if let Some(ev) = events.as_deref_mut()
-                && let Some(t_stop) = ev.after_step(stepper, problem, t_next, state, &mut report)
-            {
-                report.t = t_stop;
-                observer.observe(t_stop, state);
-                stepper.reset();
-                return Ok(report);
+            if let Some(ev) = events.as_deref_mut() {
+                match ev.after_step(stepper, problem, t_next, state, &mut report, observer) {
+                    AfterStep::Go => {}
+                    AfterStep::Terminated(t_stop) => {
+                        report.t = t_stop;
+                        observer.observe(t_stop, state);
+                        stepper.reset();
+                        return Ok(report);
+                    }
+                    AfterStep::Stopped => {
+                        report.t = t_next;
+                        report.status = Status::Stopped;
+                        return Ok(report);
+                    }
+                }
             }
             t = t_next;
             report.t = t;
@@ -402,7 +462,7 @@ impl<'a> Driver<'a> {
         O: Observer<St::State>,
     {
         let tol = Tolerances::new(tolerances.rtol, tolerances.atol)?;
-        let mut tracker = EventTracker::new(events);
+        let mut tracker = EventTracker::new(events, self.outputs);
         let mut report = Report {
             t: self.t0,
             steps: 0,
@@ -410,7 +470,10 @@ impl<'a> Driver<'a> {
             status: Status::Completed,
             events: Vec::new(),
         };
-        EventHook::<P, St>::start(&mut tracker, self.t0, state);
+        if EventHook::<P, St>::start(&mut tracker, self.t0, state, observer) == Flow::Stop {
+            report.status = Status::Stopped;
+            return Ok(report);
+        }
         if observer.observe(self.t0, state) == Flow::Stop {
             report.status = Status::Stopped;
             return Ok(report);
@@ -468,13 +531,19 @@ impl<'a> Driver<'a> {
                     });
                 }
                 report.steps += 1;
-                if let Some(t_stop) =
-                    tracker.after_step(stepper, problem, t_next, state, &mut report)
-                {
-                    report.t = t_stop;
-                    observer.observe(t_stop, state);
-                    stepper.reset();
-                    return Ok(report);
+                match tracker.after_step(stepper, problem, t_next, state, &mut report, observer) {
+                    AfterStep::Go => {}
+                    AfterStep::Terminated(t_stop) => {
+                        report.t = t_stop;
+                        observer.observe(t_stop, state);
+                        stepper.reset();
+                        return Ok(report);
+                    }
+                    AfterStep::Stopped => {
+                        report.t = t_next;
+                        report.status = Status::Stopped;
+                        return Ok(report);
+                    }
                 }
                 t = t_next;
                 report.t = t;
@@ -498,47 +567,76 @@ impl<'a> Driver<'a> {
     }
 }
 
-/// Event handling inside the loops (a trait so the fixed loop can run without events).
+/// What the loop does after the events and outputs of a step.
+enum AfterStep {
+    /// Go on.
+    Go,
+    /// A terminal event at this time; the state is set there.
+    Terminated(f64),
+    /// An observer stopped the run at an output.
+    Stopped,
+}
+
+/// Event and output handling inside the loops (a trait so the fixed loop can run without
+/// events).
 trait EventHook<P: ?Sized, St: Stepper<P>> {
-    fn start(&mut self, t: f64, state: &St::State);
-    /// Returns the time at which the run must stop (terminal event), with `state` set there.
-    fn after_step(
+    /// At the start: outputs at `t₀`.
+    fn start<O: Observer<St::State>>(
+        &mut self,
+        t: f64,
+        state: &St::State,
+        observer: &mut O,
+    ) -> Flow;
+    /// After a step to `t1`: events located, outputs in the step delivered.
+    fn after_step<O: Observer<St::State>>(
         &mut self,
         stepper: &mut St,
         problem: &P,
         t1: f64,
         state: &mut St::State,
         report: &mut Report<St::State>,
-    ) -> Option<f64>;
+        observer: &mut O,
+    ) -> AfterStep;
 }
 
 /// No events.
 struct NoEvents<'e, S>(std::marker::PhantomData<&'e S>);
 
 impl<P: ?Sized, St: Stepper<P>> EventHook<P, St> for NoEvents<'_, St::State> {
-    fn start(&mut self, _t: f64, _state: &St::State) {}
-    fn after_step(
+    fn start<O: Observer<St::State>>(
+        &mut self,
+        _t: f64,
+        _state: &St::State,
+        _observer: &mut O,
+    ) -> Flow {
+        Flow::Continue
+    }
+    fn after_step<O: Observer<St::State>>(
         &mut self,
         _stepper: &mut St,
         _problem: &P,
         _t1: f64,
         _state: &mut St::State,
         _report: &mut Report<St::State>,
-    ) -> Option<f64> {
-        None
+        _observer: &mut O,
+    ) -> AfterStep {
+        AfterStep::Go
     }
 }
 
-struct EventTracker<'e, 'f, S> {
+struct EventTracker<'e, 'f, 'o, S> {
     events: &'e mut [Event<'f, S>],
     g_prev: Vec<f64>,
     t_prev: f64,
     scratch: Option<S>,
     found: Vec<(f64, usize)>,
+    /// Output times and the index of the next one to deliver.
+    outputs: &'o [f64],
+    next_output: usize,
 }
 
-impl<'e, 'f, S: VectorState> EventTracker<'e, 'f, S> {
-    fn new(events: &'e mut [Event<'f, S>]) -> Self {
+impl<'e, 'f, 'o, S: VectorState> EventTracker<'e, 'f, 'o, S> {
+    fn new(events: &'e mut [Event<'f, S>], outputs: &'o [f64]) -> Self {
         let n = events.len();
         Self {
             events,
@@ -546,6 +644,8 @@ impl<'e, 'f, S: VectorState> EventTracker<'e, 'f, S> {
             t_prev: 0.0,
             scratch: None,
             found: Vec::with_capacity(n),
+            outputs,
+            next_output: 0,
         }
     }
 }
@@ -558,35 +658,50 @@ fn crosses(direction: Direction, g0: f64, g1: f64) -> bool {
     }
 }
 
-impl<P: ?Sized, St> EventHook<P, St> for EventTracker<'_, '_, St::State>
+impl<P: ?Sized, St> EventHook<P, St> for EventTracker<'_, '_, '_, St::State>
 where
     St: DenseOutput<P>,
     St::State: VectorState,
 {
-    fn start(&mut self, t: f64, state: &St::State) {
+    fn start<O: Observer<St::State>>(
+        &mut self,
+        t: f64,
+        state: &St::State,
+        observer: &mut O,
+    ) -> Flow {
         self.t_prev = t;
         for (g, ev) in self.g_prev.iter_mut().zip(self.events.iter()) {
             *g = (ev.function)(t, state);
         }
-        if !self.events.is_empty() {
+        if !self.events.is_empty() || !self.outputs.is_empty() {
             self.scratch = Some(state.zeros_like());
         }
+        while self.outputs.get(self.next_output) == Some(&t) {
+            self.next_output += 1;
+            if observer.output(t, state) == Flow::Stop {
+                return Flow::Stop;
+            }
+        }
+        Flow::Continue
     }
 
-    fn after_step(
+    fn after_step<O: Observer<St::State>>(
         &mut self,
         stepper: &mut St,
         problem: &P,
         t1: f64,
         state: &mut St::State,
         report: &mut Report<St::State>,
-    ) -> Option<f64> {
-        if self.events.is_empty() {
-            return None;
+        observer: &mut O,
+    ) -> AfterStep {
+        if self.events.is_empty() && self.outputs.is_empty() {
+            return AfterStep::Go;
         }
         let t0 = self.t_prev;
         self.found.clear();
-        let scratch = self.scratch.as_mut()?;
+        let Some(scratch) = self.scratch.as_mut() else {
+            return AfterStep::Go;
+        };
         for (i, ev) in self.events.iter().enumerate() {
             let g0 = self.g_prev[i];
             let g1 = (ev.function)(t1, state);
@@ -597,10 +712,28 @@ where
             self.g_prev[i] = g1;
         }
         self.t_prev = t1;
-        if self.found.is_empty() {
-            return None;
-        }
         self.found.sort_by(|a, b| a.0.total_cmp(&b.0));
+        // The run ends at the first terminal event, if any: outputs after it are not reached.
+        let end = self
+            .found
+            .iter()
+            .find(|&&(_, i)| self.events[i].action == Action::Terminate)
+            .map_or(t1, |&(root, _)| root);
+        while let Some(&t) = self.outputs.get(self.next_output) {
+            if t > end {
+                break;
+            }
+            self.next_output += 1;
+            let flow = if t == t1 {
+                observer.output(t, state)
+            } else {
+                stepper.interpolate(problem, t, scratch);
+                observer.output(t, scratch)
+            };
+            if flow == Flow::Stop {
+                return AfterStep::Stopped;
+            }
+        }
         for &(root, i) in &self.found {
             stepper.interpolate(problem, root, scratch);
             report.events.push(EventRecord {
@@ -611,10 +744,10 @@ where
             if self.events[i].action == Action::Terminate {
                 state.as_mut_slice().copy_from_slice(scratch.as_slice());
                 report.status = Status::Terminated(i);
-                return Some(root);
+                return AfterStep::Terminated(root);
             }
         }
-        None
+        AfterStep::Go
     }
 }
 

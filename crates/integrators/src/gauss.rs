@@ -38,7 +38,7 @@ use faer::{Par, Spec};
 use crate::error::Error;
 use crate::problem::Ode;
 use crate::state::{State, VectorState, compensated_add, copy_into, max_abs, same_time};
-use crate::stepper::Stepper;
+use crate::stepper::{DenseOutput, Stepper};
 use crate::tables::GaussTableau;
 use crate::tables::gauss::{GAUSS2, GAUSS4, GAUSS6, GAUSS8, GAUSS10, GAUSS12};
 
@@ -102,6 +102,8 @@ impl<const S: usize> Gauss<S> {
             f0: y0.zeros_like(),
             carry: y0.zeros_like(),
             last: y0.zeros_like(),
+            start: y0.zeros_like(),
+            t_start: f64::NAN,
             t_last: f64::NAN,
             h_last: 0.0,
             have_last: false,
@@ -191,6 +193,9 @@ pub struct GaussStepper<const S: usize, Y> {
     f0: Y,
     carry: Y,
     last: Y,
+    /// The state at the start of the last step (the collocation polynomial's `u(t₀)`).
+    start: Y,
+    t_start: f64,
     t_last: f64,
     h_last: f64,
     have_last: bool,
@@ -474,6 +479,7 @@ impl<const S: usize, Y: VectorState, P: Ode<Y> + ?Sized> Stepper<P> for GaussSte
             self.carry.as_mut_slice().fill(0.0);
         }
         self.starting_values(problem, t, state, h, continuing);
+        copy_into(&mut self.start, state);
         let solved = match self.method.solver {
             StageSolver::FixedPoint => self.fixed_point(problem, t, state, h),
             StageSolver::Newton => self.newton(problem, t, state, h),
@@ -500,6 +506,7 @@ impl<const S: usize, Y: VectorState, P: Ode<Y> + ?Sized> Stepper<P> for GaussSte
             }
         }
         copy_into(&mut self.last, state);
+        self.t_start = t;
         self.t_last = t + h;
         self.h_last = h;
         self.have_last = true;
@@ -509,5 +516,36 @@ impl<const S: usize, Y: VectorState, P: Ode<Y> + ?Sized> Stepper<P> for GaussSte
     fn reset(&mut self) {
         self.have_last = false;
         self.t_last = f64::NAN;
+    }
+}
+
+/// The collocation polynomial of the last step: `u(t₀ + θh) = y₀ + Σⱼ ℓⱼ(θ) Zⱼ` with `ℓⱼ` the
+/// Lagrange basis on the nodes `{0, c₁, …, c_s}` (`u(cⱼ) = y₀ + Zⱼ`, the stage values). Its
+/// error is `O(h^{s+1})` uniformly on the step (Hairer, Nørsett & Wanner, *Solving ODEs I*,
+/// Thm. II.7.10), so its order as an interpolant is `s`; at `θ = 1` it is the step's result up
+/// to round-off.
+impl<const S: usize, Y: VectorState, P: Ode<Y> + ?Sized> DenseOutput<P> for GaussStepper<S, Y> {
+    fn last_step(&self) -> Option<(f64, f64)> {
+        self.have_last.then_some((self.t_start, self.h_last))
+    }
+
+    fn interpolate(&mut self, _problem: &P, t: f64, out: &mut Y) {
+        let theta = (t - self.t_start) / self.h_last;
+        if theta == 1.0 {
+            copy_into(out, &self.last);
+            return;
+        }
+        copy_into(out, &self.start);
+        let c = &self.method.table.c;
+        for j in 0..S {
+            let w = lagrange(c, j, theta);
+            for (o, zj) in out.as_mut_slice().iter_mut().zip(self.z[j].as_slice()) {
+                *o += w * zj;
+            }
+        }
+    }
+
+    fn dense_order(&self) -> u32 {
+        S as u32
     }
 }

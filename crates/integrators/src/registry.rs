@@ -214,6 +214,7 @@ const SYMPLECTIC_EXPLICIT: Properties = Properties {
 };
 const GAUSS: Properties = Properties {
     explicit: false,
+    dense_output: true,
     ..SYMPLECTIC_EXPLICIT
 };
 /// Explicit, symplectic, symmetric, on the group (splittings, exact flows).

@@ -105,7 +105,7 @@ where
             macro_rules! fixed {
                 ($stepper:expr) => {{
                     let mut stepper = $stepper;
-                    if events.is_empty() {
+                    if events.is_empty() && plan.times.is_none() {
                         driver.run_fixed(&mut stepper, &counted, y, h, observer)?
                     } else {
                         driver.run_fixed_with_events(
@@ -119,30 +119,14 @@ where
                     }
                 }};
             }
-            macro_rules! fixed_without_dense_output {
-                ($stepper:expr) => {{
-                    if !events.is_empty() {
-                        return Err(SceneError::InvalidOption {
-                            option: "integrator",
-                            value: f64::NAN,
-                            reason: format!(
-                                "`{name}` has no dense output, which this run needs to locate \
-                                 its events"
-                            ),
-                        });
-                    }
-                    let mut stepper = $stepper;
-                    driver.run_fixed(&mut stepper, &counted, y, h, observer)?
-                }};
-            }
             match name {
                 "rk4" => fixed!(ExplicitRungeKutta::rk4().stepper(y)),
-                "gauss2" => fixed_without_dense_output!(gauss2().stepper(y)),
-                "gauss4" => fixed_without_dense_output!(gauss4().stepper(y)),
-                "gauss6" => fixed_without_dense_output!(gauss6().stepper(y)),
-                "gauss8" => fixed_without_dense_output!(gauss8().stepper(y)),
-                "gauss10" => fixed_without_dense_output!(gauss10().stepper(y)),
-                "gauss12" => fixed_without_dense_output!(gauss12().stepper(y)),
+                "gauss2" => fixed!(gauss2().stepper(y)),
+                "gauss4" => fixed!(gauss4().stepper(y)),
+                "gauss6" => fixed!(gauss6().stepper(y)),
+                "gauss8" => fixed!(gauss8().stepper(y)),
+                "gauss10" => fixed!(gauss10().stepper(y)),
+                "gauss12" => fixed!(gauss12().stepper(y)),
                 _ => return Err(no_stepper(plan, "first-order ODE")),
             }
         }

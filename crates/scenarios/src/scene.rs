@@ -137,6 +137,10 @@ pub struct RunOptions {
     pub t_end: Option<f64>,
     /// Record every `every`-th step (≥ 1).
     pub every: Option<u64>,
+    /// Rows at these times instead (from dense output), plus the final state.
+    pub at: Option<Vec<f64>>,
+    /// Rows every `output_dt` seconds from 0 instead (from dense output), plus the final state.
+    pub output_dt: Option<f64>,
     /// Which states are observed.
     pub observe: Observe,
 }
@@ -156,6 +160,8 @@ pub struct RunPlan {
     pub t_end: f64,
     /// Output cadence.
     pub every: u64,
+    /// Output times (rows there instead of every `every` steps), increasing, in `[0, t_end]`.
+    pub times: Option<Vec<f64>>,
     /// Which states are observed.
     pub observe: Observe,
 }
@@ -192,7 +198,10 @@ impl RunPlan {
     /// The driver over `[0, t_end]` that calls the observer at every step, or (with
     /// [`Observe::Ends`]) only at the start and the end.
     pub(crate) fn driver(&self) -> Result<Driver<'_>, SceneError> {
-        let driver = Driver::new(0.0, self.t_end)?;
+        let mut driver = Driver::new(0.0, self.t_end)?;
+        if let Some(times) = &self.times {
+            driver = driver.output_at(times)?;
+        }
         Ok(match self.observe {
             Observe::EveryStep => driver,
             Observe::Ends => driver.every(u64::MAX)?,
@@ -237,14 +246,98 @@ impl RunOptions {
                 reason: "must be at least 1".into(),
             });
         }
+        let times = self.output_times(t_end)?;
+        if times.is_some() && !method.properties.dense_output {
+            let dense: Vec<&str> = info
+                .integrators()
+                .into_iter()
+                .filter(|n| registry::find(n).is_ok_and(|m| m.properties.dense_output))
+                .collect();
+            return Err(SceneError::InvalidOption {
+                option: if self.at.is_some() { "at" } else { "output_dt" },
+                value: f64::NAN,
+                reason: format!(
+                    "`{}` has no dense output to give rows at chosen times; methods with dense \
+                     output that run `{}`: {}",
+                    method.name,
+                    info.name,
+                    dense.join(", ")
+                ),
+            });
+        }
         Ok(RunPlan {
             method,
             kind,
             step,
             t_end,
             every,
+            times,
             observe: self.observe,
         })
+    }
+}
+
+impl RunOptions {
+    /// The output times of `at` or `output_dt` over `[0, t_end]`, checked.
+    fn output_times(&self, t_end: f64) -> Result<Option<Vec<f64>>, SceneError> {
+        let bad = |option: &'static str, value: f64, reason: String| SceneError::InvalidOption {
+            option,
+            value,
+            reason,
+        };
+        match (&self.at, self.output_dt) {
+            (Some(_), Some(dt)) => Err(bad(
+                "output_dt",
+                dt,
+                "`at` and `output_dt` are both given; choose one".into(),
+            )),
+            (Some(times), None) => {
+                if times.is_empty() {
+                    return Err(bad("at", f64::NAN, "no times given".into()));
+                }
+                let mut previous = f64::NEG_INFINITY;
+                for &t in times {
+                    if !(t.is_finite() && (0.0..=t_end).contains(&t)) {
+                        return Err(bad("at", t, format!("outside [0, t_end = {t_end}]")));
+                    }
+                    if t == previous {
+                        return Err(bad("at", t, "given twice".into()));
+                    }
+                    if t < previous {
+                        return Err(bad(
+                            "at",
+                            t,
+                            format!("comes after {previous}: times must increase"),
+                        ));
+                    }
+                    previous = t;
+                }
+                Ok(Some(times.clone()))
+            }
+            (None, Some(dt)) => {
+                if !(dt.is_finite() && dt > 0.0 && dt <= t_end) {
+                    return Err(bad(
+                        "output_dt",
+                        dt,
+                        format!("must be positive and at most the horizon t_end = {t_end}"),
+                    ));
+                }
+                let n = (t_end / dt * (1.0 + 1e-12)).floor();
+                if n > 1e8 {
+                    return Err(bad(
+                        "output_dt",
+                        dt,
+                        format!("{n:e} rows: more than 10^8; give a larger interval"),
+                    ));
+                }
+                // k·dt, not repeated sums (no accumulated rounding); the final state is
+                // written anyway.
+                Ok(Some(
+                    (0..=n as u64).map(|k| (k as f64 * dt).min(t_end)).collect(),
+                ))
+            }
+            (None, None) => Ok(None),
+        }
     }
 }
 
@@ -457,7 +550,9 @@ pub(crate) fn continuous_quaternion(
 }
 
 /// Observer that turns states (of any type) into rows, tracks the relative energy error at
-/// every step and hands every `every`-th row to the recorder.
+/// every step, and hands rows to the recorder: every `every`-th step, or (when the plan has
+/// output times) at exactly those times, from the method's dense output. The final state is
+/// always written, whatever the cadence.
 pub(crate) struct RowObserver<'a, S, F> {
     row: F,
     buffer: Vec<f64>,
@@ -465,8 +560,15 @@ pub(crate) struct RowObserver<'a, S, F> {
     energy0: Option<f64>,
     max_rel: f64,
     every: u64,
+    /// Rows at the plan's output times instead of every `every` steps.
+    at_times: bool,
     count: u64,
     rows: u64,
+    /// The row of the last observed step is in `buffer` and has not been written.
+    pending: bool,
+    /// Time of the last row written.
+    last_written: f64,
+    stopped: bool,
     recorder: &'a mut dyn Recorder,
     state: std::marker::PhantomData<fn(&S)>,
 }
@@ -477,7 +579,7 @@ impl<'a, S, F: FnMut(f64, &S, &mut [f64])> RowObserver<'a, S, F> {
     pub(crate) fn new(
         columns: usize,
         energy_column: usize,
-        every: u64,
+        plan: &RunPlan,
         row: F,
         recorder: &'a mut dyn Recorder,
     ) -> Self {
@@ -487,16 +589,49 @@ impl<'a, S, F: FnMut(f64, &S, &mut [f64])> RowObserver<'a, S, F> {
             energy_column,
             energy0: None,
             max_rel: 0.0,
-            every,
+            every: plan.every,
+            at_times: plan.times.is_some(),
             count: 0,
             rows: 0,
+            pending: false,
+            last_written: f64::NEG_INFINITY,
+            stopped: false,
             recorder,
             state: std::marker::PhantomData,
         }
     }
 
-    /// The run's summary.
-    pub(crate) fn summary(&self, t: f64, steps: u64, evaluations: u64) -> RunSummary {
+    /// Fills `buffer` with the row of `(t, state)` and its relative energy error.
+    fn fill(&mut self, t: f64, state: &S) -> f64 {
+        (self.row)(t, state, &mut self.buffer);
+        let e = self.buffer[self.energy_column];
+        let e0 = *self.energy0.get_or_insert(e);
+        let rel = if e0 != 0.0 {
+            ((e - e0) / e0).abs()
+        } else {
+            (e - e0).abs()
+        };
+        if let Some(slot) = self.buffer.get_mut(self.energy_column + 1) {
+            *slot = rel;
+        }
+        rel
+    }
+
+    fn write(&mut self, t: f64) -> Flow {
+        self.rows += 1;
+        self.last_written = t;
+        let flow = self.recorder.row(&self.buffer);
+        if flow == Flow::Stop {
+            self.stopped = true;
+        }
+        flow
+    }
+
+    /// Writes the final state's row if the cadence skipped it, and returns the run's summary.
+    pub(crate) fn summary(&mut self, t: f64, steps: u64, evaluations: u64) -> RunSummary {
+        if self.pending && !self.stopped && t > self.last_written {
+            self.write(t);
+        }
         RunSummary {
             t,
             steps,
@@ -509,26 +644,22 @@ impl<'a, S, F: FnMut(f64, &S, &mut [f64])> RowObserver<'a, S, F> {
 
 impl<S, F: FnMut(f64, &S, &mut [f64])> Observer<S> for RowObserver<'_, S, F> {
     fn observe(&mut self, t: f64, state: &S) -> Flow {
-        (self.row)(t, state, &mut self.buffer);
-        let e = self.buffer[self.energy_column];
-        let e0 = *self.energy0.get_or_insert(e);
-        let rel = if e0 != 0.0 {
-            ((e - e0) / e0).abs()
-        } else {
-            (e - e0).abs()
-        };
+        let rel = self.fill(t, state);
         self.max_rel = self.max_rel.max(rel);
-        if let Some(slot) = self.buffer.get_mut(self.energy_column + 1) {
-            *slot = rel;
-        }
-        let flow = if self.count.is_multiple_of(self.every) {
-            self.rows += 1;
-            self.recorder.row(&self.buffer)
-        } else {
-            Flow::Continue
-        };
+        let due = !self.at_times && self.count.is_multiple_of(self.every);
         self.count += 1;
-        flow
+        if due {
+            self.pending = false;
+            self.write(t)
+        } else {
+            self.pending = true;
+            Flow::Continue
+        }
+    }
+
+    fn output(&mut self, t: f64, state: &S) -> Flow {
+        self.fill(t, state);
+        self.write(t)
     }
 }
 
@@ -554,7 +685,7 @@ where
     F: FnMut(f64, &SVector<f64, S>, &mut [f64]),
 {
     let mut y = y0;
-    let mut observer = RowObserver::new(columns, energy_column, plan.every, row, recorder);
+    let mut observer = RowObserver::new(columns, energy_column, plan, row, recorder);
     let outcome = dispatch::run_ode(problem, &mut y, plan, events, &mut observer)?;
     Ok(observer.summary(outcome.t, outcome.steps, outcome.evaluations))
 }

@@ -24,10 +24,12 @@
 //! # tol = 1e-10           # ... or the tolerance of an adaptive integrator, not both
 //! t_end = 5.0             # horizon (s)
 //! every = 10              # record every 10th step
+//! # at = [0.5, 1.0, 2.5]  # ... or rows at these times (dense output), or
+//! # output_dt = 0.1       # ... every 0.1 s; the final state is always written
 //! ```
 //!
 //! Top-level keys are `scene`, `parameters`, `run` and `body`; `[run]` takes `integrator`,
-//! `dt`, `tol`, `t_end` and `every`. Any other key is an error.
+//! `dt`, `tol`, `t_end`, `every`, `at` and `output_dt`. Any other key is an error.
 //!
 //! # Rigid bodies: the `[body]` table
 //!
@@ -164,6 +166,8 @@ struct RawRun {
     tol: Option<Spanned<toml::Value>>,
     t_end: Option<Spanned<toml::Value>>,
     every: Option<Spanned<toml::Value>>,
+    at: Option<Spanned<Vec<Spanned<toml::Value>>>>,
+    output_dt: Option<Spanned<toml::Value>>,
 }
 
 /// A validated scene file: the scene it names, its parameters (the scene's defaults with the
@@ -337,11 +341,23 @@ impl Source<'_> {
                 }
             },
         };
+        let output_dt = number("output_dt", &run.output_dt)?;
+        let at = match &run.at {
+            None => None,
+            Some(list) => Some(
+                list.get_ref()
+                    .iter()
+                    .map(|v| self.number("run.at", &v.span(), v))
+                    .collect::<Result<Vec<f64>, _>>()?,
+            ),
+        };
         let options = RunOptions {
             integrator: run.integrator.as_ref().map(|s| s.get_ref().clone()),
             step,
             t_end,
             every,
+            at,
+            output_dt,
             observe: crate::scene::Observe::EveryStep,
         };
         // Validate the table as a whole and point at the key the scene complains about.
@@ -356,6 +372,8 @@ impl Source<'_> {
                         "tol" => run.tol.as_ref().map(Spanned::span),
                         "t_end" => run.t_end.as_ref().map(Spanned::span),
                         "every" => run.every.as_ref().map(Spanned::span),
+                        "at" => run.at.as_ref().map(Spanned::span),
+                        "output_dt" => run.output_dt.as_ref().map(Spanned::span),
                         _ => None,
                     };
                     (*option, span)
@@ -420,6 +438,8 @@ mod tests {
                 step: Some(StepControl::Fixed(0.001)),
                 t_end: Some(2.0),
                 every: Some(10),
+                at: None,
+                output_dt: None,
                 observe: crate::scene::Observe::EveryStep,
             }
         );

@@ -246,6 +246,8 @@ pub fn plan(
         step: Some(control),
         t_end: Some(t_end),
         every: Some(1),
+        at: None,
+        output_dt: None,
         observe,
     }
     .resolve(info)

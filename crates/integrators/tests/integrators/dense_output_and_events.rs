@@ -144,3 +144,156 @@ fn events_work_with_fixed_steps_too() {
     assert_eq!(report.events.len(), 1);
     assert!((report.events[0].t - 2.0 * big_k).abs() <= 1e-10);
 }
+
+/// Local error at θ = 1/3 of the Gauss–Legendre collocation polynomial of one step from the
+/// exact state.
+fn gauss_dense_error<const S: usize>(method: tumble_integrators::Gauss<S>, h: f64) -> f64 {
+    let problem = HamiltonianOde(HarmonicOscillator);
+    let t0 = 0.7;
+    let mut y = V2::from(HarmonicOscillator::exact(1.0, 0.0, t0));
+    let mut st = method.stepper(&y);
+    st.step(&problem, t0, &mut y, h).unwrap();
+    let mut out = V2::zeros();
+    let t = t0 + h / 3.0;
+    st.interpolate(&problem, t, &mut out);
+    let exact = HarmonicOscillator::exact(1.0, 0.0, t);
+    (out[0] - exact[0]).abs().max((out[1] - exact[1]).abs())
+}
+
+/// The collocation polynomial of an `s`-stage Gauss method interpolates with error
+/// `O(h^{s+1})` (its dense order is `s`), and at the end of the step it is the step's result.
+#[test]
+fn gauss_collocation_polynomials_have_order_s() {
+    use tumble_integrators::{gauss2, gauss4, gauss6, gauss8};
+    for (name, s, fit) in [
+        (
+            "gauss2",
+            1.0,
+            OrderStudy::new(0.4, 5).run(|h| Ok(gauss_dense_error(gauss2(), h))),
+        ),
+        (
+            "gauss4",
+            2.0,
+            OrderStudy::new(0.4, 5).run(|h| Ok(gauss_dense_error(gauss4(), h))),
+        ),
+        (
+            "gauss6",
+            3.0,
+            OrderStudy::new(0.8, 5).run(|h| Ok(gauss_dense_error(gauss6(), h))),
+        ),
+        (
+            "gauss8",
+            4.0,
+            OrderStudy::new(1.6, 5).run(|h| Ok(gauss_dense_error(gauss8(), h))),
+        ),
+    ] {
+        let fit = fit.unwrap();
+        eprintln!("dense {name}: local slope {:.3}", fit.slope);
+        fit.check(s + 1.0, 0.3)
+            .unwrap_or_else(|m| panic!("{name}: {m}"));
+    }
+    let problem = HamiltonianOde(HarmonicOscillator);
+    let mut y = V2::new(1.0, 0.3);
+    let mut st = gauss8().stepper(&y);
+    st.step(&problem, 0.0, &mut y, 0.1).unwrap();
+    let mut end = V2::zeros();
+    st.interpolate(&problem, 0.1, &mut end);
+    assert_eq!(end, y);
+    assert_eq!(
+        DenseOutput::<HamiltonianOde<HarmonicOscillator>>::dense_order(&st),
+        4
+    );
+}
+
+/// Output at chosen times: the observer's `output` sees exactly those times, in order, from
+/// the dense output (to its accuracy), the final time from the step itself, and the steps are
+/// the same as without outputs (same final state, same count).
+#[test]
+fn output_times_come_from_dense_output_and_leave_the_steps_alone() {
+    use tumble_integrators::{Flow, Observer};
+    struct Outputs(Vec<(f64, V2)>);
+    impl Observer<V2> for Outputs {
+        fn output(&mut self, t: f64, y: &V2) -> Flow {
+            self.0.push((t, *y));
+            Flow::Continue
+        }
+    }
+    let problem = HamiltonianOde(HarmonicOscillator);
+    let times = [0.0, 0.123, 1.0, 2.5, 3.3, 7.0];
+    let tol = Tolerances::new(1e-12, 1e-12).unwrap();
+    let y0 = V2::from(HarmonicOscillator::exact(1.0, 0.0, 0.0));
+    // Adaptive DOP853.
+    let mut plain = y0;
+    let mut st = ExplicitRungeKutta::dop853().stepper(&plain);
+    let r0 = Driver::new(0.0, 7.0)
+        .unwrap()
+        .run_adaptive(
+            &mut st,
+            &problem,
+            &mut plain,
+            &tol,
+            &mut [],
+            &mut NoObserver,
+        )
+        .unwrap();
+    let mut y = y0;
+    let mut st = ExplicitRungeKutta::dop853().stepper(&y);
+    let mut seen = Outputs(Vec::new());
+    let r1 = Driver::new(0.0, 7.0)
+        .unwrap()
+        .output_at(&times)
+        .unwrap()
+        .run_adaptive(&mut st, &problem, &mut y, &tol, &mut [], &mut seen)
+        .unwrap();
+    assert_eq!((r0.steps, plain), (r1.steps, y));
+    assert_eq!(seen.0.iter().map(|p| p.0).collect::<Vec<_>>(), times);
+    for (t, v) in &seen.0 {
+        let exact = HarmonicOscillator::exact(1.0, 0.0, *t);
+        assert!(
+            (v[0] - exact[0]).abs() < 1e-10,
+            "t = {t}: {v:?} vs {exact:?}"
+        );
+    }
+    assert_eq!(
+        seen.0.last().unwrap().1,
+        y,
+        "the final output is the final state"
+    );
+    // Fixed-step Gauss–Legendre through the dense path.
+    let mut y = y0;
+    let mut st = tumble_integrators::gauss8().stepper(&y);
+    let mut seen = Outputs(Vec::new());
+    Driver::new(0.0, 7.0)
+        .unwrap()
+        .output_at(&times)
+        .unwrap()
+        .run_fixed_with_events(&mut st, &problem, &mut y, 0.01, &mut [], &mut seen)
+        .unwrap();
+    assert_eq!(seen.0.len(), times.len());
+    for (t, v) in &seen.0 {
+        let exact = HarmonicOscillator::exact(1.0, 0.0, *t);
+        assert!(
+            (v[0] - exact[0]).abs() < 1e-10,
+            "t = {t}: {v:?} vs {exact:?}"
+        );
+    }
+    // Bad times are refused; a stepper without dense output cannot take them.
+    assert!(
+        Driver::new(0.0, 1.0)
+            .unwrap()
+            .output_at(&[0.5, 0.5])
+            .is_err()
+    );
+    assert!(Driver::new(0.0, 1.0).unwrap().output_at(&[1.5]).is_err());
+    let mut y = y0;
+    let mut st = tumble_integrators::gauss8().stepper(&y);
+    let refused = Driver::new(0.0, 1.0)
+        .unwrap()
+        .output_at(&[0.5])
+        .unwrap()
+        .run_fixed(&mut st, &problem, &mut y, 0.1, &mut NoObserver);
+    assert!(
+        refused.is_err(),
+        "run_fixed has no dense output to take output times from"
+    );
+}

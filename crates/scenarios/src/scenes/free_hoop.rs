@@ -336,7 +336,7 @@ fn run_coupled(
     let mut observer = RowObserver::new(
         FREE_HOOP.columns().len(),
         ENERGY_COLUMN,
-        plan.every,
+        plan,
         {
             let mut previous = None;
             move |t, s: &CoupledState<1>, out: &mut [f64]| {

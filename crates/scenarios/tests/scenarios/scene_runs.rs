@@ -213,8 +213,130 @@ fn a_method_of_another_problem_kind_is_refused_with_the_applicable_ones() {
         "{err}"
     );
     assert!(err.to_string().contains("lgvi"), "{err}");
-    // The events of the Coriolis drop need dense output: Gauss–Legendre (none) is not listed.
+    // The events of the Coriolis drop need dense output: every method of its kind has one
+    // (Gauss–Legendre through its collocation polynomial); the rigid-body methods are not
+    // of its kind.
     let drop = find("coriolis-drop").unwrap().info();
-    assert!(!drop.runs("gauss8"));
-    assert!(drop.runs("dop853") && drop.runs("rk4"));
+    assert!(drop.runs("gauss8") && drop.runs("dop853") && drop.runs("rk4"));
+    assert!(!drop.runs("lgvi"));
+}
+
+/// `every` thins the rows but never drops the final state: 1000 steps written every 300th
+/// give t = 0, 0.3, 0.6, 0.9 and 1.
+#[test]
+fn the_final_state_is_written_whatever_the_cadence() {
+    let scene = find("free-body").unwrap();
+    let opts = RunOptions {
+        step: Some(StepControl::Fixed(1e-3)),
+        t_end: Some(1.0),
+        every: Some(300),
+        ..RunOptions::default()
+    };
+    let mut rows = Rows::default();
+    let summary = scene
+        .run(&scene.info().default_params(), &opts, &mut rows)
+        .unwrap();
+    let times: Vec<f64> = rows.0.iter().map(|r| r[0]).collect();
+    assert_eq!(times, [0.0, 0.3, 0.6, 0.9, 1.0]);
+    assert_eq!(summary.rows, 5);
+}
+
+/// Rows at chosen times come from the method's dense output: DOP853's rows at t = 0.37, 1.5,
+/// 2.25 agree with Gauss–Legendre 12 stepping exactly onto those times to its accuracy, and
+/// the steps (hence the final state) are those of the run without output times.
+#[test]
+fn rows_at_chosen_times_agree_with_a_run_that_steps_onto_them() {
+    let scene = find("free-hoop").unwrap();
+    let params = scene.info().default_params();
+    let at = vec![0.37, 1.5, 2.25];
+    let dense = RunOptions {
+        integrator: Some("dop853".into()),
+        step: Some(StepControl::Tolerance(1e-13)),
+        t_end: Some(3.0),
+        at: Some(at.clone()),
+        ..RunOptions::default()
+    };
+    let mut rows = Rows::default();
+    let with = scene.run(&params, &dense, &mut rows).unwrap();
+    assert_eq!(
+        rows.0.iter().map(|r| r[0]).collect::<Vec<_>>(),
+        [0.37, 1.5, 2.25, 3.0]
+    );
+    let plain = RunOptions {
+        at: None,
+        ..dense.clone()
+    };
+    let mut all = Rows::default();
+    let without = scene.run(&params, &plain, &mut all).unwrap();
+    assert_eq!(with.steps, without.steps);
+    assert_eq!(rows.0.last().unwrap(), all.0.last().unwrap());
+    // Gauss12 at h = 0.01 passes through 0.37, 1.5 and 2.25 (to rounding of k h).
+    let fine = RunOptions {
+        integrator: Some("gauss12".into()),
+        step: Some(StepControl::Fixed(0.01)),
+        t_end: Some(3.0),
+        ..RunOptions::default()
+    };
+    let mut reference = Rows::default();
+    scene.run(&params, &fine, &mut reference).unwrap();
+    let columns = scene.info().columns();
+    let state = 1..columns.iter().position(|c| c == "energy").unwrap();
+    for row in &rows.0[..3] {
+        let r = reference
+            .0
+            .iter()
+            .find(|r| (r[0] - row[0]).abs() < 1e-12)
+            .unwrap();
+        for k in state.clone() {
+            assert!(
+                (row[k] - r[k]).abs() < 1e-9,
+                "t = {}: {} = {} vs {}",
+                row[0],
+                columns[k],
+                row[k],
+                r[k]
+            );
+        }
+    }
+}
+
+/// Output times are checked before any work: outside the horizon, out of order, repeated,
+/// both `at` and `output_dt`, or a method without dense output — each a named option error.
+#[test]
+fn bad_output_times_are_refused_before_any_work() {
+    let scene = find("free-hoop").unwrap();
+    let info = scene.info();
+    let bad = [
+        (Some(vec![0.5, 11.0]), None, None, "at"),
+        (Some(vec![0.5, 0.2]), None, None, "at"),
+        (Some(vec![0.5, 0.5]), None, None, "at"),
+        (Some(vec![]), None, None, "at"),
+        (None, Some(-1.0), None, "output_dt"),
+        (None, Some(0.0), None, "output_dt"),
+        (Some(vec![1.0]), Some(0.1), None, "output_dt"),
+        (Some(vec![1.0]), None, Some("lgvi"), "at"),
+    ];
+    for (at, output_dt, integrator, option) in bad {
+        let opts = RunOptions {
+            integrator: Some(integrator.unwrap_or("dop853").to_string()),
+            at: at.clone(),
+            output_dt,
+            ..RunOptions::default()
+        };
+        match opts.resolve(info) {
+            Err(SceneError::InvalidOption { option: o, .. }) => {
+                assert_eq!(o, option, "{at:?} {output_dt:?}");
+            }
+            other => panic!("{at:?} {output_dt:?}: {other:?}"),
+        }
+    }
+    let every = RunOptions {
+        integrator: Some("gauss8".into()),
+        step: Some(StepControl::Fixed(0.01)),
+        t_end: Some(1.0),
+        output_dt: Some(0.25),
+        ..RunOptions::default()
+    };
+    let plan = every.resolve(info).unwrap();
+    assert_eq!(plan.times.unwrap(), [0.0, 0.25, 0.5, 0.75, 1.0]);
 }

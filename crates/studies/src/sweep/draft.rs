@@ -406,6 +406,8 @@ impl Draft {
             step,
             t_end: t_end.as_ref().map(|(x, _)| *x),
             every: Some(1),
+            at: None,
+            output_dt: None,
             observe: tumble_scenarios::scene::Observe::EveryStep,
         };
         options.resolve(info).map_err(|error| {
