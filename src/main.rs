@@ -5,14 +5,23 @@ mod cmd;
 mod manifest;
 mod output;
 mod plot;
+mod provenance;
 
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
+/// The version and the git commit the binary was built from.
+const VERSION: &str = concat!(
+    env!("CARGO_PKG_VERSION"),
+    " (commit ",
+    env!("TUMBLE_GIT_COMMIT"),
+    ")"
+);
+
 /// tumble: high-accuracy rigid-body dynamics.
 #[derive(Parser, Debug)]
-#[command(name = "tumble", version, about, long_about = None)]
+#[command(name = "tumble", version = VERSION, about, long_about = None)]
 struct Cli {
     #[command(subcommand)]
     command: Command,

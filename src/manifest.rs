@@ -6,6 +6,8 @@ use std::collections::BTreeMap;
 
 use serde::Serialize;
 use tumble_scenarios::{Params, StepControl};
+
+use crate::provenance::Provenance;
 use tumble_studies::sweep::{AxisValues, Sampling, Shard, SweepDefinition, SweepReport};
 use tumble_studies::work_precision::{Config, Ladder, Reference};
 
@@ -249,6 +251,7 @@ pub struct WorkPrecisionManifest {
     max_run_seconds: f64,
     origin: String,
     parameters: BTreeMap<String, f64>,
+    provenance: Provenance,
     reference: ReferenceJson,
     scene: String,
     t_end: f64,
@@ -293,6 +296,7 @@ impl WorkPrecisionManifest {
             max_run_seconds: config.max_run_seconds,
             origin: origin.to_string(),
             parameters: fixed(params, &[]),
+            provenance: Provenance::now(1),
             reference: ReferenceJson {
                 agreement: reference.agreement,
                 cross_check: reference.check.clone(),

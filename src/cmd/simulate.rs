@@ -16,7 +16,7 @@ use std::io::{self, Write};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use anyhow::{Context, Result};
+use anyhow::{Context, Result, bail};
 use tumble_integrators::Flow;
 use tumble_scenarios::scene_file::SceneFile;
 use tumble_scenarios::scenes;
@@ -26,8 +26,10 @@ use tumble_scenarios::{
 };
 
 use super::args::parse_set;
+use crate::manifest;
 use crate::output;
 use crate::plot;
+use crate::provenance::Provenance;
 
 /// Flags of `tumble simulate`.
 #[derive(clap::Args, Debug)]
@@ -378,6 +380,59 @@ fn step_words(step: StepControl) -> String {
     }
 }
 
+/// `FILE.csv.json`: how a simulation's CSV was made.
+#[derive(serde::Serialize)]
+struct SimulationRecord<'a> {
+    provenance: Provenance,
+    scene: &'static str,
+    origin: &'a str,
+    parameters: std::collections::BTreeMap<&'static str, f64>,
+    integrator: &'static str,
+    dt: Option<f64>,
+    tol: Option<f64>,
+    t_end: f64,
+    every: u64,
+    at: Option<&'a [f64]>,
+    csv: String,
+    columns: Vec<String>,
+    rows: u64,
+    steps: u64,
+    evaluations: u64,
+    reached_t: f64,
+    max_energy_rel_err: f64,
+    wall_time_s: f64,
+}
+
+impl<'a> SimulationRecord<'a> {
+    fn new(setup: &'a Setup, summary: &RunSummary, wall: f64, csv: Option<&Path>) -> Self {
+        let plan = &setup.plan;
+        let (dt, tol) = match plan.step {
+            StepControl::Fixed(h) => (Some(h), None),
+            StepControl::Tolerance(t) => (None, Some(t)),
+        };
+        SimulationRecord {
+            provenance: Provenance::now(1),
+            scene: setup.scene.info().name,
+            origin: &setup.origin,
+            parameters: setup.params.iter().collect(),
+            integrator: plan.integrator(),
+            dt,
+            tol,
+            t_end: plan.t_end,
+            every: plan.every,
+            at: plan.times.as_deref(),
+            csv: csv.map_or_else(String::new, |p| p.display().to_string()),
+            columns: setup.scene.info().columns(),
+            rows: summary.rows,
+            steps: summary.steps,
+            evaluations: summary.evaluations,
+            reached_t: summary.t,
+            max_energy_rel_err: summary.max_energy_rel_err,
+            wall_time_s: wall,
+        }
+    }
+}
+
 /// What a run produced.
 struct Outcome {
     summary: RunSummary,
@@ -429,6 +484,24 @@ pub fn run(args: &Args) -> Result<()> {
         None => None,
     };
     let plot_dest = destinations.next();
+    // A regular CSV file gets its provenance beside it: FILE.csv.json.
+    let sidecar = match csv_dest.as_ref().map(output::Destination::mode) {
+        Some(output::Mode::Atomic { target }) => {
+            let mut name = target.as_os_str().to_owned();
+            name.push(".json");
+            let path = std::path::PathBuf::from(name);
+            let dest = output::Destination::check(&path)
+                .with_context(|| "the provenance file beside -o".to_string())?;
+            if plot_dest.as_ref().is_some_and(|p| p.file() == dest.file()) {
+                bail!(
+                    "--plot {}: the same file as the provenance written beside -o",
+                    path.display()
+                );
+            }
+            Some(dest)
+        }
+        _ => None,
+    };
     let start = Instant::now();
     let (outcome, written) = match csv_dest {
         Some(dest) if *dest.mode() != output::Mode::Stdout => {
@@ -474,9 +547,21 @@ pub fn run(args: &Args) -> Result<()> {
             .join(", ");
         plot::save_to(&figure, dest)?;
     }
+    if let Some(dest) = &sidecar {
+        let text = manifest::to_text(&SimulationRecord::new(
+            &setup,
+            &summary,
+            elapsed.as_secs_f64(),
+            args.output.as_deref(),
+        ))?;
+        dest.write_all(text.as_bytes())?;
+    }
     if let Some(out) = written
         && let Err(e) = out.finish()
     {
+        if let Some(dest) = &sidecar {
+            let _ = std::fs::remove_file(dest.file());
+        }
         if let Some(dest) = &plot_dest
             && let output::Mode::Atomic { target } = dest.mode()
         {

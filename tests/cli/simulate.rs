@@ -110,8 +110,28 @@ fn driven_hoop_csv_has_the_header_rows_and_initial_conditions() {
         rows.windows(2).all(|w| w[1][0] > w[0][0]),
         "time not increasing"
     );
-    // Only the CSV is left: no temporary file.
-    assert_eq!(entries(dir.path()), ["out.csv"]);
+    // Only the CSV and its provenance are left: no temporary file.
+    assert_eq!(entries(dir.path()), ["out.csv", "out.csv.json"]);
+    let record: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("out.csv.json")).unwrap())
+            .unwrap();
+    assert_eq!(record["scene"], "driven-hoop");
+    assert_eq!(record["rows"], 101);
+    assert_eq!(
+        record["provenance"]["tumble_version"],
+        env!("CARGO_PKG_VERSION")
+    );
+    assert!(
+        record["provenance"]["git_commit"]
+            .as_str()
+            .is_some_and(|c| !c.is_empty())
+    );
+    assert!(record["provenance"]["command_line"][1] == "simulate");
+    assert!(
+        record["max_energy_rel_err"]
+            .as_f64()
+            .is_some_and(|e| e < 1e-9)
+    );
     // The summary names the scene, integrator and step.
     let err = stderr(&out);
     for word in [
@@ -302,7 +322,14 @@ fn plots_are_written_as_png_and_svg() {
     }
     assert_eq!(
         entries(dir.path()),
-        ["run.csv", "run.png", "run.svg", "run2.csv"]
+        [
+            "run.csv",
+            "run.csv.json",
+            "run.png",
+            "run.svg",
+            "run2.csv",
+            "run2.csv.json"
+        ]
     );
 }
 
@@ -391,7 +418,16 @@ fn bad_steps_horizons_and_integrators_are_rejected() {
         (&["--tol", "1e-9"], &["--tol 1e-9", "fixed step"]),
         (
             &["--integrator", "dop853", "--tol", "0"],
-            &["--tol 0", "positive"],
+            &["--tol 0", "strictly between 0 and 1"],
+        ),
+        // A tolerance of 1 or more bounds nothing (1e308 gave alpha ≈ -6e81 with exit 0).
+        (
+            &["--integrator", "dop853", "--tol", "2"],
+            &["--tol 2", "strictly between 0 and 1"],
+        ),
+        (
+            &["--integrator", "dop853", "--tol", "1e308"],
+            &["--tol 1e308", "strictly between 0 and 1"],
         ),
     ];
     for (flags, expect) in cases {

@@ -385,3 +385,17 @@ fn the_example_sweep_files_are_valid() {
     }
     assert!(found >= 2, "{found} example sweep files");
 }
+
+/// `--threads` beyond the points to compute starts only as many workers as points (100,000
+/// threads were once spawned for 6 points); the manifest says how many ran.
+#[test]
+fn threads_are_clamped_to_the_points() {
+    let tmp = tempfile::tempdir().unwrap();
+    let file = write_sweep(tmp.path(), "small.sweep.toml", &small(0.2, 3));
+    let file = file.to_str().unwrap();
+    succeeds(
+        tmp.path(),
+        &["sweep", file, "--threads", "100000", "-o", "many"],
+    );
+    assert_eq!(manifest(&tmp.path().join("many"))["threads"], 6);
+}

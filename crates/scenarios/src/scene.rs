@@ -388,11 +388,13 @@ fn check_step(method: &MethodInfo, step: StepControl, t_end: f64) -> Result<(), 
             }
         }
         StepControl::Tolerance(tol) => {
-            if !(tol.is_finite() && tol > 0.0) {
+            if !(tol > 0.0 && tol < 1.0) {
                 return Err(SceneError::InvalidOption {
                     option: "tol",
                     value: tol,
-                    reason: "the tolerance must be finite and positive".into(),
+                    reason: "the tolerance must lie strictly between 0 and 1 (it bounds the \
+                             relative and absolute error of each step)"
+                        .into(),
                 });
             }
             if !adaptive {

@@ -164,6 +164,8 @@ fn execute(
     compute: &(dyn Fn(u64) -> PointRow + Sync),
     sink: &mut dyn FnMut(PointRow) -> Result<(), SweepError>,
 ) -> Result<(), SweepError> {
+    // No more workers than points: `--threads 100000` on 6 points starts 6.
+    let threads = threads.clamp(1, pending.len().max(1));
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .thread_name(|i| format!("tumble-sweep-{i}"))
@@ -304,13 +306,14 @@ pub fn run(
     progress: &mut dyn FnMut(&Progress),
 ) -> Result<SweepReport, SweepError> {
     let start = Instant::now();
-    let threads = config.threads.max(1);
     let (mut writer, mut rows) = open_folder(def, dir, config.shard, config.resume)?;
     let total = config.shard.size(def.points());
     let pending: Vec<u64> = (config.shard.index - 1..def.points())
         .step_by(usize::try_from(config.shard.count).unwrap_or(usize::MAX))
         .filter(|i| !rows.contains_key(i))
         .collect();
+    // No more workers than points to compute.
+    let threads = config.threads.clamp(1, pending.len().max(1));
     let resumed = total - pending.len() as u64;
     let mut state = Progress {
         total,
