@@ -63,6 +63,8 @@ fn main() -> ExitCode {
             eprintln!("error: {e:#}");
             if e.is::<cmd::sweep::PointsFailed>() {
                 ExitCode::from(cmd::sweep::PointsFailed::EXIT_CODE)
+            } else if e.is::<cmd::sweep::NotConverged>() {
+                ExitCode::from(cmd::sweep::NotConverged::EXIT_CODE)
             } else {
                 ExitCode::FAILURE
             }

@@ -8,7 +8,9 @@ use serde::Serialize;
 use tumble_scenarios::{Params, StepControl};
 
 use crate::provenance::Provenance;
-use tumble_studies::sweep::{AxisValues, Sampling, Shard, SweepDefinition, SweepReport};
+use tumble_studies::sweep::{
+    AxisValues, CheckReport, Sampling, Shard, SweepDefinition, SweepReport,
+};
 use tumble_studies::work_precision::{Config, Ladder, Reference};
 
 /// `(dt, tol)` of a step control: one of them is `None`.
@@ -141,6 +143,56 @@ struct FailureJson {
     status: &'static str,
 }
 
+/// The self-check of a sweep.
+#[derive(Serialize)]
+struct SelfCheckJson {
+    converged: bool,
+    dt: Option<f64>,
+    largest_change: f64,
+    metrics: BTreeMap<&'static str, MetricChangeJson>,
+    points: Vec<u64>,
+    status_changed: Vec<u64>,
+    tol: Option<f64>,
+    tolerance: f64,
+}
+
+/// One metric's largest change under the self-check.
+#[derive(Serialize)]
+struct MetricChangeJson {
+    at_point: Option<u64>,
+    max_change: f64,
+    undefined_in_one: u64,
+}
+
+impl SelfCheckJson {
+    fn new(c: &CheckReport, tolerance: f64) -> Self {
+        let (dt, tol) = step_fields(c.setting);
+        SelfCheckJson {
+            converged: c.converged(tolerance),
+            dt,
+            largest_change: c.largest(),
+            metrics: c
+                .changes
+                .iter()
+                .map(|m| {
+                    (
+                        m.metric.name(),
+                        MetricChangeJson {
+                            at_point: m.index,
+                            max_change: m.max_change,
+                            undefined_in_one: m.undefined_in_one,
+                        },
+                    )
+                })
+                .collect(),
+            points: c.points.clone(),
+            status_changed: c.status_changed.clone(),
+            tol,
+            tolerance,
+        }
+    }
+}
+
 /// `manifest.json` of a sweep folder.
 #[derive(Serialize)]
 pub struct SweepManifest {
@@ -157,6 +209,7 @@ pub struct SweepManifest {
     points: u64,
     points_per_second: Option<f64>,
     resumed_points: u64,
+    self_check: Option<SelfCheckJson>,
     shard: String,
     t_end: f64,
     threads: usize,
@@ -175,6 +228,7 @@ impl SweepManifest {
         shard: Shard,
         command: &str,
         plots: &[String],
+        self_check: Option<(&CheckReport, f64)>,
     ) -> Self {
         let failures: Vec<FailureJson> = report
             .failures()
@@ -205,6 +259,7 @@ impl SweepManifest {
             points: report.total,
             points_per_second: report.points_per_second(),
             resumed_points: report.resumed,
+            self_check: self_check.map(|(c, tol)| SelfCheckJson::new(c, tol)),
             shard: shard.to_string(),
             t_end: def.plan.t_end,
             threads: report.threads,

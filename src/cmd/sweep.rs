@@ -28,7 +28,7 @@ use std::time::Duration;
 use anyhow::{Result, bail};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use tumble_studies::sweep::{
-    self, Override, Progress, RunConfig, Shard, SweepDefinition, SweepReport,
+    self, CheckSize, Metric, Override, Progress, RunConfig, Shard, SweepDefinition, SweepReport,
 };
 
 use super::args::parse_set;
@@ -70,6 +70,16 @@ pub struct Args {
     /// job arrays; join the parts with `tumble sweep merge`.
     #[arg(long, value_name = "K/N")]
     pub shard: Option<String>,
+    /// The self-check: re-run N spread-out points (the grid's corners included) at half the
+    /// step (or a tolerance 100 times tighter) and report the largest change of each metric;
+    /// `auto` is max(8, 1 %) of the points, `off` skips it. A whole sweep (or a merge) runs it;
+    /// a shard does not.
+    #[arg(long, value_name = "N|auto|off", default_value = "auto")]
+    pub check: String,
+    /// Largest change of a metric under the self-check accepted as converged; above it the
+    /// summary warns and the exit status is 4.
+    #[arg(long = "check-tolerance", value_name = "TOL", default_value_t = 1e-6)]
+    pub check_tolerance: f64,
 }
 
 /// Subcommands of `tumble sweep`.
@@ -89,6 +99,12 @@ pub struct MergeArgs {
     /// Output folder [default: out/merged].
     #[arg(short = 'o', long = "output", value_name = "DIR")]
     pub output: Option<PathBuf>,
+    /// The self-check of the merged sweep (as for `tumble sweep`).
+    #[arg(long, value_name = "N|auto|off", default_value = "auto")]
+    pub check: String,
+    /// As for `tumble sweep`.
+    #[arg(long = "check-tolerance", value_name = "TOL", default_value_t = 1e-6)]
+    pub check_tolerance: f64,
 }
 
 /// The sweep finished but some points failed: exit status 3.
@@ -115,6 +131,66 @@ impl fmt::Display for PointsFailed {
 }
 
 impl std::error::Error for PointsFailed {}
+
+/// The sweep finished, but its self-check found a metric that changed by more than the
+/// tolerance at the tighter setting: exit status 4.
+#[derive(Debug)]
+pub struct NotConverged {
+    /// The largest change.
+    pub largest: f64,
+    /// The tolerance.
+    pub tolerance: f64,
+}
+
+impl fmt::Display for NotConverged {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "the self-check changed a metric by {:.2e}, more than the tolerance {:.1e} (or a \
+             point's status or a metric's definedness changed): the sweep's setting does not \
+             resolve its metrics; see manifest.json's self_check and use a smaller step or \
+             tolerance",
+            self.largest, self.tolerance
+        )
+    }
+}
+
+impl std::error::Error for NotConverged {}
+
+impl NotConverged {
+    /// The exit status that says the metrics did not pass the self-check.
+    pub const EXIT_CODE: u8 = 4;
+}
+
+/// The self-check settings of `sweep` and `merge`.
+#[derive(Debug, Clone, Copy)]
+struct CheckSettings {
+    size: CheckSize,
+    tolerance: f64,
+    threads: usize,
+}
+
+impl CheckSettings {
+    fn parse(raw: &str, tolerance: f64, threads: usize) -> Result<Self> {
+        let size = match raw.trim() {
+            "auto" => CheckSize::Auto,
+            "off" => CheckSize::Off,
+            n => match n.parse::<u64>() {
+                Ok(0) => CheckSize::Off,
+                Ok(n) => CheckSize::Points(n),
+                Err(_) => bail!("--check {raw}: expected a number of points, `auto` or `off`"),
+            },
+        };
+        if !(tolerance.is_finite() && tolerance > 0.0) {
+            bail!("--check-tolerance {tolerance}: must be finite and positive");
+        }
+        Ok(Self {
+            size,
+            tolerance,
+            threads,
+        })
+    }
+}
 
 impl PointsFailed {
     /// The exit status that says some points failed.
@@ -180,6 +256,7 @@ pub fn run(args: &Args) -> Result<()> {
         .unwrap_or_else(|| default_output(args.file.as_deref()));
 
     output::check_folder(&dir, &folder_files(&def))?;
+    let check = CheckSettings::parse(&args.check, args.check_tolerance, threads)?;
 
     // Stage two: the points.
     let bar = progress_bar();
@@ -192,7 +269,7 @@ pub fn run(args: &Args) -> Result<()> {
     };
     let report = quiet_point_panics(|| sweep::run(&def, &dir, &config, &mut on_progress))?;
     bar.finish_and_clear();
-    finish(&def, &dir, &report, shard, "sweep")
+    finish(&def, &dir, &report, shard, "sweep", check)
 }
 
 /// Writes `results.csv`, the plots and `manifest.json`, prints the summary, and turns failed
@@ -203,6 +280,7 @@ fn finish(
     report: &SweepReport,
     shard: Shard,
     command: &str,
+    check: CheckSettings,
 ) -> Result<()> {
     if !report.complete() {
         bail!(
@@ -219,7 +297,27 @@ fn finish(
     } else {
         Vec::new()
     };
-    let text = manifest::to_text(&SweepManifest::new(def, report, shard, command, &plots))?;
+    // The self-check of a whole sweep: spread-out points again at a tighter setting.
+    let self_check = if shard == Shard::ALL {
+        let points = sweep::check_points(def, check.size);
+        if points.is_empty() {
+            None
+        } else {
+            Some(quiet_point_panics(|| {
+                sweep::self_check(def, &report.rows, &points, check.threads)
+            })?)
+        }
+    } else {
+        None
+    };
+    let text = manifest::to_text(&SweepManifest::new(
+        def,
+        report,
+        shard,
+        command,
+        &plots,
+        self_check.as_ref().map(|c| (c, check.tolerance)),
+    ))?;
     output::write_whole(&dir.join("manifest.json"), text.as_bytes())?;
 
     let failed = report.failures().count();
@@ -259,6 +357,55 @@ fn finish(
         "status       {} ok, {failed} failed",
         report.rows.len() - failed
     );
+    let converged = match &self_check {
+        Some(c) => {
+            let ok = c.converged(check.tolerance);
+            eprintln!(
+                "self-check   metrics {} to {:.1e} ({} check points at {}){}",
+                if ok { "converged" } else { "changed" },
+                c.largest(),
+                c.points.len(),
+                plot::sweep::step_words(c.setting),
+                if ok {
+                    String::new()
+                } else {
+                    format!(", more than the tolerance {:.1e}", check.tolerance)
+                }
+            );
+            for m in &c.changes {
+                if m.metric != Metric::MaxEnergyRelErr
+                    && (m.max_change > check.tolerance || m.undefined_in_one > 0)
+                {
+                    eprintln!(
+                        "warning      {}: changed by {:.2e}{}{}",
+                        m.metric,
+                        m.max_change,
+                        m.index
+                            .map_or_else(String::new, |i| format!(" at point {i}")),
+                        if m.undefined_in_one > 0 {
+                            format!(", defined in one run only at {} points", m.undefined_in_one)
+                        } else {
+                            String::new()
+                        }
+                    );
+                }
+            }
+            if !c.status_changed.is_empty() {
+                eprintln!(
+                    "warning      {} check points failed at one setting only: {:?}",
+                    c.status_changed.len(),
+                    c.status_changed
+                );
+            }
+            ok.then_some(()).ok_or(c.largest())
+        }
+        None => {
+            if shard == Shard::ALL {
+                eprintln!("self-check   off");
+            }
+            Ok(())
+        }
+    };
     eprintln!("output       {}", dir.display());
     for p in &plots {
         eprintln!("plot         {}", dir.join(p).display());
@@ -268,6 +415,13 @@ fn finish(
             failed,
             total: report.total,
             results,
+        }
+        .into());
+    }
+    if let Err(largest) = converged {
+        return Err(NotConverged {
+            largest,
+            tolerance: check.tolerance,
         }
         .into());
     }
@@ -284,8 +438,10 @@ fn merge(args: &MergeArgs) -> Result<()> {
         &out,
         &["results.csv".to_string(), "manifest.json".to_string()],
     )?;
+    let threads = std::thread::available_parallelism().map_or(1, usize::from);
+    let check = CheckSettings::parse(&args.check, args.check_tolerance, threads)?;
     let (def, report) = sweep::merge(&args.dirs, &out)?;
-    finish(&def, &out, &report, Shard::ALL, "merge")
+    finish(&def, &out, &report, Shard::ALL, "merge", check)
 }
 
 fn seconds(d: Duration) -> String {

@@ -399,3 +399,50 @@ fn threads_are_clamped_to_the_points() {
     );
     assert_eq!(manifest(&tmp.path().join("many"))["threads"], 6);
 }
+
+/// Every whole sweep checks itself: spread-out points (the grid's corners among them) again at
+/// half the step, the largest change of each metric in the summary and the manifest. A setting
+/// that does not resolve the metrics (Gauss–Legendre 2 at 0.05 s) exits with status 4 and says
+/// so; `--check off` skips the check.
+#[test]
+fn a_sweep_states_how_far_its_metrics_converged() {
+    let tmp = tempfile::tempdir().unwrap();
+    let file = write_sweep(tmp.path(), "small.sweep.toml", &small(1.0, 4));
+    let file = file.to_str().unwrap();
+    let out = succeeds(tmp.path(), &["sweep", file, "-o", "good"]);
+    let err = stderr(&out);
+    assert!(err.contains("self-check   metrics converged to"), "{err}");
+    let check = &manifest(&tmp.path().join("good"))["self_check"];
+    assert_eq!(check["converged"], true);
+    assert_eq!(check["dt"], 0.005);
+    // max(8, 1 %) of 8 points: all of them, corners 0, 1, 6, 7 included.
+    assert_eq!(check["points"].as_array().unwrap().len(), 8);
+    assert!(check["largest_change"].as_f64().unwrap() < 1e-6);
+
+    let coarse = small(1.0, 4)
+        .replace("integrator = \"gauss8\"", "integrator = \"gauss2\"")
+        .replace("dt = 0.01", "dt = 0.05");
+    let file = write_sweep(tmp.path(), "coarse.sweep.toml", &coarse);
+    let file = file.to_str().unwrap();
+    let out = tumble_in(tmp.path(), &["sweep", file, "-o", "coarse", "--check", "3"]);
+    assert_eq!(out.status.code(), Some(4), "{}", stderr(&out));
+    let err = stderr(&out);
+    assert!(err.contains("self-check   metrics changed"), "{err}");
+    assert!(err.contains("more than the tolerance"), "{err}");
+    let check = &manifest(&tmp.path().join("coarse"))["self_check"];
+    assert_eq!(check["converged"], false);
+    assert_eq!(check["points"].as_array().unwrap().len(), 3);
+    // The results are written all the same.
+    assert!(tmp.path().join("coarse/results.csv").is_file());
+
+    let out = succeeds(
+        tmp.path(),
+        &["sweep", file, "-o", "unchecked", "--check", "off"],
+    );
+    assert!(stderr(&out).contains("self-check   off"));
+    assert!(manifest(&tmp.path().join("unchecked"))["self_check"].is_null());
+    let out = tumble_in(tmp.path(), &["sweep", file, "-o", "x", "--check", "many"]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(stderr(&out).contains("--check many"));
+    assert!(!tmp.path().join("x").exists());
+}

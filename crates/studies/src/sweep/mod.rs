@@ -70,6 +70,7 @@
 //! The library never prints: progress goes to a callback, cancellation comes in through an
 //! `AtomicBool`.
 
+pub mod check;
 pub mod definition;
 mod draft;
 mod engine;
@@ -82,6 +83,7 @@ mod value;
 use std::fmt;
 use std::path::PathBuf;
 
+pub use check::{CheckReport, CheckSize, MetricChange, check_points, self_check};
 pub use definition::{Axis, AxisValues, Sampling, Spacing, SweepDefinition};
 pub use draft::Override;
 pub use engine::{Progress, RunConfig, SweepReport, merge, run, run_point};
@@ -229,6 +231,9 @@ pub enum SweepError {
         /// What is wrong.
         reason: String,
     },
+    /// The self-check could not run.
+    #[error("self-check: {0}")]
+    SelfCheck(String),
     /// Shard folders that do not make one complete sweep.
     #[error("merge: {0}")]
     Merge(String),

@@ -728,3 +728,21 @@ fn tilt_map_is_converged() {
     );
     assert!(worst < 1e-6, "point {at}: tilt changes by {worst:e} rad");
 }
+
+#[test]
+fn self_check_points_are_the_corners_and_a_spread_and_depend_only_on_the_definition() {
+    use super::check::{CheckSize, check_points};
+    let def = SweepDefinition::tilt_map(&[]).unwrap();
+    let points = check_points(&def, CheckSize::Auto);
+    // 1 % of the default map's points, at least 8; the same every time.
+    assert_eq!(points.len() as u64, (def.points() / 100).max(8));
+    assert_eq!(points, check_points(&def, CheckSize::Auto));
+    let ny = def.axes[1].count().unwrap();
+    let last = def.points() - 1;
+    for corner in [0, ny - 1, last - (ny - 1), last] {
+        assert!(points.contains(&corner), "corner {corner} missing");
+    }
+    assert!(points.windows(2).all(|w| w[0] < w[1]));
+    assert!(check_points(&def, CheckSize::Off).is_empty());
+    assert_eq!(check_points(&small(), CheckSize::Points(100)).len(), 6);
+}
