@@ -15,8 +15,8 @@ use tumble_scenarios::{RunOptions, SceneInfo, StepControl};
 #[derive(clap::Args, Debug)]
 pub struct Args {
     /// Print a JSON array of objects (name, summary, coordinates, columns, parameters,
-    /// conserved, oracle, integrators, default_integrator, default_dt or default_tol,
-    /// default_t_end) instead of text.
+    /// conserved, oracle, integrators, default_integrator, default_error, default_dt or
+    /// default_tol, default_t_end) instead of text.
     #[arg(long)]
     pub json: bool,
 }
@@ -44,6 +44,7 @@ struct Entry {
     problems: Vec<&'static str>,
     integrators: Vec<&'static str>,
     default_integrator: &'static str,
+    default_error: f64,
     #[serde(skip_serializing_if = "Option::is_none")]
     default_dt: Option<f64>,
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -80,6 +81,7 @@ fn entry(info: &SceneInfo) -> Result<Entry> {
         problems: info.problems.iter().map(|k| k.name()).collect(),
         integrators: info.integrators(),
         default_integrator: info.default_integrator,
+        default_error: info.default_error,
         default_dt,
         default_tol,
         default_t_end: resolved.t_end,
@@ -166,8 +168,8 @@ fn text(entries: &[Entry]) -> String {
             (None, None) => String::new(),
         };
         out += &format!(
-            "  default run  {}, {step}, t_end = {} s\n",
-            e.default_integrator, e.default_t_end
+            "  default run  {}, {step}, t_end = {} s; error {:.1e} against the reference\n",
+            e.default_integrator, e.default_t_end, e.default_error
         );
         out += &format!("  integrators  {}\n", e.integrators.join(", "));
     }

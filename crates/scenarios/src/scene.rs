@@ -38,8 +38,12 @@ pub struct SceneInfo {
     /// Default integrator.
     pub default_integrator: &'static str,
     /// Default fixed step (s) for fixed-step integrators (adaptive ones default to a tolerance of
-    /// 1e-10).
+    /// [`DEFAULT_TOLERANCE`]).
     pub default_step: f64,
+    /// The error of the default run (integrator, step or tolerance, horizon) at the default
+    /// parameters against the scene's reference, in the work–precision norm (measured by the
+    /// test `default_runs_are_accurate`, which keeps this figure honest).
+    pub default_error: f64,
     /// Default horizon (s).
     pub default_t_end: f64,
     /// Diagnostic columns after the coordinates and rates.
@@ -103,6 +107,10 @@ impl SceneInfo {
         registry::find(name).is_ok_and(|m| self.kind_for(m).is_some())
     }
 }
+
+/// The tolerance of an adaptive method when none is given: every built-in scene's default run
+/// is then within 1e-9 of its reference at its default horizon (`default_runs_are_accurate`).
+pub const DEFAULT_TOLERANCE: f64 = 1e-12;
 
 /// Fixed step or error tolerance.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -234,7 +242,7 @@ impl RunOptions {
         check_horizon(t_end)?;
         let step = match self.step {
             Some(s) => s,
-            None if adaptive => StepControl::Tolerance(1e-10),
+            None if adaptive => StepControl::Tolerance(DEFAULT_TOLERANCE),
             None => StepControl::Fixed(info.default_step),
         };
         check_step(method, step, t_end)?;
