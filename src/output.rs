@@ -61,3 +61,18 @@ pub fn check_folder(dir: &Path, names: &[String]) -> Result<()> {
     }
     Ok(())
 }
+
+/// Creates the output folder `dir` if needed and locks it for this process (see
+/// [`tumble_output::FolderLock`]); the lock is released when the returned guard is dropped.
+///
+/// # Errors
+/// The folder cannot be created, or another live tumble process holds it.
+pub fn lock_folder(dir: &Path, break_lock: bool) -> Result<tumble_output::FolderLock> {
+    std::fs::create_dir_all(dir)
+        .map_err(|e| anyhow::anyhow!("{}: cannot create the output folder: {e}", dir.display()))?;
+    let since = humantime::format_rfc3339_seconds(std::time::SystemTime::now()).to_string();
+    let command = std::env::args().collect::<Vec<_>>().join(" ");
+    Ok(tumble_output::FolderLock::acquire(
+        dir, &since, &command, break_lock,
+    )?)
+}

@@ -32,21 +32,11 @@ impl Provenance {
             git_commit: env!("TUMBLE_GIT_COMMIT"),
             command_line: std::env::args().collect(),
             date: humantime::format_rfc3339_seconds(std::time::SystemTime::now()).to_string(),
-            host: host_name(),
+            host: tumble_output::host_name(),
             cpu: cpu_model(),
             threads,
         }
     }
-}
-
-/// The host name (Linux: `/proc/sys/kernel/hostname`; `unknown` where there is none).
-fn host_name() -> String {
-    std::fs::read_to_string("/proc/sys/kernel/hostname")
-        .ok()
-        .map(|s| s.trim().to_string())
-        .filter(|s| !s.is_empty())
-        .or_else(|| std::env::var("HOSTNAME").ok())
-        .unwrap_or_else(|| "unknown".to_string())
 }
 
 /// The CPU model (Linux: `model name` in `/proc/cpuinfo`; the architecture elsewhere).

@@ -70,6 +70,17 @@ pub struct Args {
     /// Write rows every DT seconds from 0 (from dense output), and the final state.
     #[arg(long = "output-dt", value_name = "DT", allow_negative_numbers = true)]
     pub output_dt: Option<f64>,
+    /// Refuse a run estimated to take more steps than this (fixed steps: t_end/dt), and stop an
+    /// adaptive one that reaches it.
+    #[arg(long = "max-steps", value_name = "N", default_value_t = 1_000_000_000)]
+    pub max_steps: u64,
+    /// Warn (on stderr and in the provenance file) when the largest relative energy error of
+    /// the run exceeds this: the step does not resolve the motion.
+    #[arg(long = "energy-warn", value_name = "REL", default_value_t = 1e-6)]
+    pub energy_warn: f64,
+    /// Refuse a run whose CSV is estimated to be larger than this many bytes (suffixes k, M, G).
+    #[arg(long = "max-output", value_name = "BYTES", default_value = "10G")]
+    pub max_output: String,
     /// Write the CSV to FILE instead of stdout (`-` is stdout).
     #[arg(short = 'o', long = "output", value_name = "FILE.csv")]
     pub output: Option<PathBuf>,
@@ -189,15 +200,78 @@ fn setup(args: &Args) -> Result<Setup> {
         options.output_dt = args.output_dt;
         options.at = None;
     }
+    options.max_steps = Some(args.max_steps);
     let plan = options
         .resolve(scene.info())
         .map_err(|e| anyhow::anyhow!("{}: {}", scene.info().name, flag_words(&e)))?;
+    check_budget(&plan, scene.info(), args)?;
     Ok(Setup {
         scene,
         origin,
         params,
         plan,
     })
+}
+
+/// Parses a byte count with an optional suffix: `1000`, `500k`, `20M`, `10G`.
+fn parse_bytes(raw: &str) -> Result<f64> {
+    let t = raw.trim();
+    let (number, scale) = match t.char_indices().last() {
+        Some((i, 'k' | 'K')) => (&t[..i], 1e3),
+        Some((i, 'm' | 'M')) => (&t[..i], 1e6),
+        Some((i, 'g' | 'G')) => (&t[..i], 1e9),
+        Some((i, 't' | 'T')) => (&t[..i], 1e12),
+        _ => (t, 1.0),
+    };
+    match number.trim().parse::<f64>() {
+        Ok(x) if x.is_finite() && x > 0.0 => Ok(x * scale),
+        _ => bail!("--max-output {raw}: expected a positive number of bytes, e.g. 500M or 10G"),
+    }
+}
+
+/// The run's work and output estimated from its plan, refused above the budgets before any
+/// step: fixed-step runs take `⌈t_end/dt⌉` steps; the CSV holds a row per written step (or per
+/// output time) of about 22 bytes a column.
+fn check_budget(plan: &RunPlan, info: &SceneInfo, args: &Args) -> Result<()> {
+    let max_output = parse_bytes(&args.max_output)?;
+    let steps = match plan.step {
+        StepControl::Fixed(h) => Some((plan.t_end / h).ceil()),
+        StepControl::Tolerance(_) => None,
+    };
+    if let Some(n) = steps
+        && n > args.max_steps as f64
+    {
+        bail!(
+            "{}: about {n:.3e} steps (t_end / dt = {} / {}), more than --max-steps {}; give a \
+             larger step, a shorter horizon, or a larger --max-steps",
+            info.name,
+            number(plan.t_end),
+            number(match plan.step {
+                StepControl::Fixed(h) => h,
+                StepControl::Tolerance(t) => t,
+            }),
+            args.max_steps
+        );
+    }
+    let rows = match (&plan.times, steps) {
+        (Some(times), _) => Some(times.len() as f64 + 1.0),
+        (None, Some(n)) => Some((n / plan.every as f64).ceil() + 2.0),
+        (None, None) => None,
+    };
+    if let Some(rows) = rows {
+        let bytes = rows * info.columns().len() as f64 * 22.0;
+        if bytes > max_output {
+            bail!(
+                "{}: the CSV would be about {:.2e} bytes ({rows:.3e} rows), more than \
+                 --max-output {}; write fewer rows (--every N, --output-dt DT) or raise \
+                 --max-output",
+                info.name,
+                bytes,
+                args.max_output
+            );
+        }
+    }
+    Ok(())
 }
 
 /// Parses `--at T1,T2,...`: plain numbers (their order and range are checked with the plan).
@@ -400,11 +474,18 @@ struct SimulationRecord<'a> {
     evaluations: u64,
     reached_t: f64,
     max_energy_rel_err: f64,
+    energy_warning: bool,
     wall_time_s: f64,
 }
 
 impl<'a> SimulationRecord<'a> {
-    fn new(setup: &'a Setup, summary: &RunSummary, wall: f64, csv: Option<&Path>) -> Self {
+    fn new(
+        setup: &'a Setup,
+        summary: &RunSummary,
+        wall: f64,
+        csv: Option<&Path>,
+        energy_warn: f64,
+    ) -> Self {
         let plan = &setup.plan;
         let (dt, tol) = match plan.step {
             StepControl::Fixed(h) => (Some(h), None),
@@ -428,6 +509,7 @@ impl<'a> SimulationRecord<'a> {
             evaluations: summary.evaluations,
             reached_t: summary.t,
             max_energy_rel_err: summary.max_energy_rel_err,
+            energy_warning: !(summary.max_energy_rel_err <= energy_warn),
             wall_time_s: wall,
         }
     }
@@ -553,6 +635,7 @@ pub fn run(args: &Args) -> Result<()> {
             &summary,
             elapsed.as_secs_f64(),
             args.output.as_deref(),
+            args.energy_warn,
         ))?;
         dest.write_all(text.as_bytes())?;
     }
@@ -596,6 +679,13 @@ pub fn run(args: &Args) -> Result<()> {
         "energy       max relative error {:.3e}",
         summary.max_energy_rel_err
     );
+    if !(summary.max_energy_rel_err <= args.energy_warn) {
+        eprintln!(
+            "warning      the energy drifted by {:.2e} (relative), more than --energy-warn {:.1e}: \
+             the step or tolerance does not resolve this motion; use a smaller one",
+            summary.max_energy_rel_err, args.energy_warn
+        );
+    }
     let cadence = match &r.times {
         Some(times) => format!(
             "at {} chosen time{} from dense output, and the final state",

@@ -66,6 +66,10 @@ pub struct Args {
     /// folder holds none).
     #[arg(long)]
     pub resume: bool,
+    /// Take over the output folder's lock even if another tumble process seems to hold it
+    /// (a lock left by a dead process on this host is taken over without it).
+    #[arg(long = "break-lock")]
+    pub break_lock: bool,
     /// Run only the K-th of N deterministic parts (points with index mod N = K − 1), for
     /// job arrays; join the parts with `tumble sweep merge`.
     #[arg(long, value_name = "K/N")]
@@ -99,6 +103,9 @@ pub struct MergeArgs {
     /// Output folder [default: out/merged].
     #[arg(short = 'o', long = "output", value_name = "DIR")]
     pub output: Option<PathBuf>,
+    /// As for `tumble sweep`.
+    #[arg(long = "break-lock")]
+    pub break_lock: bool,
     /// The self-check of the merged sweep (as for `tumble sweep`).
     #[arg(long, value_name = "N|auto|off", default_value = "auto")]
     pub check: String,
@@ -257,6 +264,7 @@ pub fn run(args: &Args) -> Result<()> {
 
     output::check_folder(&dir, &folder_files(&def))?;
     let check = CheckSettings::parse(&args.check, args.check_tolerance, threads)?;
+    let _lock = output::lock_folder(&dir, args.break_lock)?;
 
     // Stage two: the points.
     let bar = progress_bar();
@@ -440,6 +448,7 @@ fn merge(args: &MergeArgs) -> Result<()> {
     )?;
     let threads = std::thread::available_parallelism().map_or(1, usize::from);
     let check = CheckSettings::parse(&args.check, args.check_tolerance, threads)?;
+    let _lock = output::lock_folder(&out, args.break_lock)?;
     let (def, report) = sweep::merge(&args.dirs, &out)?;
     finish(&def, &out, &report, Shard::ALL, "merge", check)
 }

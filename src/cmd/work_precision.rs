@@ -47,6 +47,9 @@ pub struct Args {
     /// Long-run mode: relative energy error against time over `--long-steps` steps.
     #[arg(long)]
     pub long: bool,
+    /// Take over the output folder's lock even if another tumble process seems to hold it.
+    #[arg(long = "break-lock")]
+    pub break_lock: bool,
     /// Steps of a long run (at the scene's default step).
     #[arg(long = "long-steps", value_name = "N", default_value_t = 1 << 20)]
     pub long_steps: u64,
@@ -116,8 +119,7 @@ pub fn run(args: &Args) -> Result<()> {
         .clone()
         .unwrap_or_else(|| PathBuf::from("out").join("work-precision").join(stem));
     output::check_folder(&dir, &folder_files("work-precision"))?;
-    std::fs::create_dir_all(&dir)
-        .with_context(|| format!("cannot create the output folder {}", dir.display()))?;
+    let _lock = output::lock_folder(&dir, args.break_lock)?;
 
     eprintln!(
         "work-precision  {} ({origin}), t in [0, {t_end}] s",
@@ -401,8 +403,7 @@ fn long(
     let h = info.default_step;
     let t_end = h * args.long_steps as f64;
     output::check_folder(dir, &folder_files("long"))?;
-    std::fs::create_dir_all(dir)
-        .with_context(|| format!("cannot create the output folder {}", dir.display()))?;
+    let _lock = output::lock_folder(dir, args.break_lock)?;
     eprintln!(
         "long run        {} ({origin}): {} steps of dt = {h} s, t in [0, {t_end}] s",
         info.name, args.long_steps

@@ -693,3 +693,111 @@ fn bad_output_times_are_refused_before_running() {
         &["--output-dt -1: must be positive"],
     );
 }
+
+#[test]
+fn runaway_runs_are_refused_before_any_step() {
+    // 10^14 steps (the run once wrote 78 GB before it was stopped).
+    fails(
+        &[],
+        &[
+            "simulate",
+            "free-body",
+            "--dt",
+            "1e-9",
+            "--t-end",
+            "1e5",
+            "-o",
+            "x.csv",
+        ],
+        &["about 1.000e14 steps", "--max-steps 1000000000"],
+    );
+    // 10^9 rows of CSV.
+    fails(
+        &[],
+        &[
+            "simulate",
+            "free-body",
+            "--dt",
+            "1e-6",
+            "--t-end",
+            "1e3",
+            "-o",
+            "x.csv",
+        ],
+        &["the CSV would be about", "--max-output 10G", "--every N"],
+    );
+    fails(
+        &[],
+        &[
+            "simulate",
+            "free-body",
+            "--max-output",
+            "lots",
+            "-o",
+            "x.csv",
+        ],
+        &["--max-output lots"],
+    );
+    // The same run with fewer rows or a raised budget is fine (it is not run here: a smaller
+    // horizon shows the budget follows the plan).
+    let dir = TempDir::new().unwrap();
+    succeeds(
+        dir.path(),
+        &[
+            "simulate",
+            "free-body",
+            "--dt",
+            "1e-6",
+            "--t-end",
+            "1e-2",
+            "--max-steps",
+            "20000",
+        ],
+    );
+}
+
+#[test]
+fn an_unresolved_motion_is_reported_not_hidden() {
+    // The T-handle spun at 10^6 rad/s with split4 at 1 ms: the energy drifts by tens of per
+    // cent. The run completes, and says so on stderr and in its provenance file.
+    let dir = TempDir::new().unwrap();
+    let out = succeeds(
+        dir.path(),
+        &[
+            "simulate",
+            "dzhanibekov",
+            "--set",
+            "spin=1e6",
+            "--integrator",
+            "split4",
+            "--t-end",
+            "0.1",
+            "-o",
+            "fast.csv",
+        ],
+    );
+    assert!(
+        stderr(&out).contains("more than --energy-warn"),
+        "{}",
+        stderr(&out)
+    );
+    let record: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("fast.csv.json")).unwrap())
+            .unwrap();
+    assert_eq!(record["energy_warning"], true);
+    // The default (the exact flow) resolves it.
+    let out = succeeds(
+        dir.path(),
+        &[
+            "simulate",
+            "dzhanibekov",
+            "--set",
+            "spin=1e6",
+            "--t-end",
+            "0.1",
+            "-o",
+            "ok.csv",
+        ],
+    );
+    assert!(!stderr(&out).contains("warning"), "{}", stderr(&out));
+}

@@ -446,3 +446,47 @@ fn a_sweep_states_how_far_its_metrics_converged() {
     assert!(stderr(&out).contains("--check many"));
     assert!(!tmp.path().join("x").exists());
 }
+
+/// Two writers, one folder: while a sweep runs, a second `tumble sweep … --resume` on its
+/// folder is refused (exit 1, naming the holder) instead of interleaving journal writes; the
+/// first finishes, the lock is gone, and a later `--resume` works. A lock left by a process
+/// that no longer runs on this host is taken over.
+#[test]
+fn a_second_writer_on_a_busy_folder_is_refused() {
+    let tmp = tempfile::tempdir().unwrap();
+    let file = write_sweep(tmp.path(), "slow.sweep.toml", &small(20.0, 30));
+    let file = file.to_str().unwrap();
+    let mut first = std::process::Command::new(env!("CARGO_BIN_EXE_tumble"))
+        .current_dir(tmp.path())
+        .args(["sweep", file, "-o", "busy", "--threads", "1"])
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let lock = tmp.path().join("busy/.tumble.lock");
+    let start = std::time::Instant::now();
+    while !lock.exists() {
+        assert!(
+            start.elapsed().as_secs() < 30,
+            "the first sweep never locked its folder"
+        );
+        std::thread::sleep(std::time::Duration::from_millis(5));
+    }
+    let second = tumble_in(tmp.path(), &["sweep", file, "-o", "busy", "--resume"]);
+    let err = stderr(&second);
+    let first_status = first.wait().unwrap();
+    assert_eq!(second.status.code(), Some(1), "{err}");
+    assert!(err.contains("busy: in use by tumble process"), "{err}");
+    assert!(err.contains("--break-lock"), "{err}");
+    assert!(first_status.success());
+    assert!(!lock.exists(), "the lock outlived its holder");
+    succeeds(tmp.path(), &["sweep", file, "-o", "busy", "--resume"]);
+    // A stale lock (a dead pid on this host) is taken over.
+    let host = std::fs::read_to_string("/proc/sys/kernel/hostname").unwrap();
+    std::fs::write(
+        &lock,
+        format!("999999999\n{}\nthen\ntumble sweep\n", host.trim()),
+    )
+    .unwrap();
+    succeeds(tmp.path(), &["sweep", file, "-o", "busy", "--resume"]);
+    assert!(!lock.exists());
+}

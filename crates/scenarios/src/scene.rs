@@ -149,6 +149,8 @@ pub struct RunOptions {
     pub at: Option<Vec<f64>>,
     /// Rows every `output_dt` seconds from 0 instead (from dense output), plus the final state.
     pub output_dt: Option<f64>,
+    /// Stop with [`tumble_integrators::Error::TooManySteps`] after this many steps.
+    pub max_steps: Option<u64>,
     /// Which states are observed.
     pub observe: Observe,
 }
@@ -170,6 +172,8 @@ pub struct RunPlan {
     pub every: u64,
     /// Output times (rows there instead of every `every` steps), increasing, in `[0, t_end]`.
     pub times: Option<Vec<f64>>,
+    /// Most steps a run may take.
+    pub max_steps: u64,
     /// Which states are observed.
     pub observe: Observe,
 }
@@ -206,7 +210,7 @@ impl RunPlan {
     /// The driver over `[0, t_end]` that calls the observer at every step, or (with
     /// [`Observe::Ends`]) only at the start and the end.
     pub(crate) fn driver(&self) -> Result<Driver<'_>, SceneError> {
-        let mut driver = Driver::new(0.0, self.t_end)?;
+        let mut driver = Driver::new(0.0, self.t_end)?.max_steps(self.max_steps);
         if let Some(times) = &self.times {
             driver = driver.output_at(times)?;
         }
@@ -280,6 +284,7 @@ impl RunOptions {
             t_end,
             every,
             times,
+            max_steps: self.max_steps.unwrap_or(u64::MAX),
             observe: self.observe,
         })
     }

@@ -358,6 +358,7 @@ impl Source<'_> {
             every,
             at,
             output_dt,
+            max_steps: None,
             observe: crate::scene::Observe::EveryStep,
         };
         // Validate the table as a whole and point at the key the scene complains about.
@@ -440,6 +441,7 @@ mod tests {
                 every: Some(10),
                 at: None,
                 output_dt: None,
+                max_steps: None,
                 observe: crate::scene::Observe::EveryStep,
             }
         );

@@ -248,6 +248,7 @@ pub fn plan(
         every: Some(1),
         at: None,
         output_dt: None,
+        max_steps: None,
         observe,
     }
     .resolve(info)

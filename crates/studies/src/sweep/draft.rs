@@ -408,6 +408,7 @@ impl Draft {
             every: Some(1),
             at: None,
             output_dt: None,
+            max_steps: None,
             observe: tumble_scenarios::scene::Observe::EveryStep,
         };
         options.resolve(info).map_err(|error| {
