@@ -189,6 +189,7 @@ fn free_hoop_scene_runs_with_lgvi_and_with_gauss() {
         let mut rows = Rows::default();
         let opts = RunOptions {
             integrator: Some(integrator.into()),
+            step: Some(tumble_scenarios::StepControl::Fixed(1e-3)),
             t_end: Some(6.0),
             ..Default::default()
         };
