@@ -6,6 +6,7 @@ mod manifest;
 mod output;
 mod plot;
 mod provenance;
+mod signals;
 
 use std::process::ExitCode;
 
@@ -61,7 +62,9 @@ fn main() -> ExitCode {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("error: {e:#}");
-            if e.is::<cmd::sweep::PointsFailed>() {
+            if let Some(i) = e.downcast_ref::<signals::Interrupted>() {
+                ExitCode::from(i.code)
+            } else if e.is::<cmd::sweep::PointsFailed>() {
                 ExitCode::from(cmd::sweep::PointsFailed::EXIT_CODE)
             } else if e.is::<cmd::sweep::NotConverged>() {
                 ExitCode::from(cmd::sweep::NotConverged::EXIT_CODE)

@@ -18,6 +18,7 @@ use std::time::Instant;
 
 use anyhow::{Context, Result, bail};
 use tumble_integrators::Flow;
+use tumble_scenarios::scene::CancelFlag;
 use tumble_scenarios::scene_file::SceneFile;
 use tumble_scenarios::scenes;
 use tumble_scenarios::{
@@ -30,6 +31,7 @@ use crate::manifest;
 use crate::output;
 use crate::plot;
 use crate::provenance::Provenance;
+use crate::signals;
 
 /// Flags of `tumble simulate`.
 #[derive(clap::Args, Debug)]
@@ -201,6 +203,7 @@ fn setup(args: &Args) -> Result<Setup> {
         options.at = None;
     }
     options.max_steps = Some(args.max_steps);
+    options.cancel = Some(CancelFlag(signals::flag()));
     let plan = options
         .resolve(scene.info())
         .map_err(|e| anyhow::anyhow!("{}: {}", scene.info().name, flag_words(&e)))?;
@@ -585,7 +588,7 @@ pub fn run(args: &Args) -> Result<()> {
         _ => None,
     };
     let start = Instant::now();
-    let (outcome, written) = match csv_dest {
+    let (outcome, written) = match &csv_dest {
         Some(dest) if *dest.mode() != output::Mode::Stdout => {
             let mut out = dest.create().context("-o")?;
             let outcome = run_into(&setup, &mut out, args.plot.is_some())?;
@@ -602,6 +605,30 @@ pub fn run(args: &Args) -> Result<()> {
         closed,
     } = outcome;
     let elapsed = start.elapsed();
+    if let Some(code) = signals::interrupted() {
+        // Dropping the unfinished output removes its temporary file: nothing is left behind.
+        drop(written);
+        let kept = match csv_dest.as_ref().map(output::Destination::mode) {
+            None | Some(output::Mode::Stdout | output::Mode::Stream) => format!(
+                "the rows up to t = {} went to {}",
+                number(summary.t),
+                args.output
+                    .as_ref()
+                    .map_or_else(|| "stdout".to_string(), |p| p.display().to_string())
+            ),
+            Some(output::Mode::Atomic { .. }) => "nothing was written".to_string(),
+        };
+        return Err(signals::Interrupted {
+            code,
+            message: format!(
+                "{} stopped at t = {} of {} s; {kept}",
+                info.name,
+                number(summary.t),
+                number(setup.plan.t_end)
+            ),
+        }
+        .into());
+    }
 
     if let (Some(dest), Some(values)) = (&plot_dest, &kept) {
         let columns = info.columns();

@@ -35,6 +35,7 @@ use super::args::parse_set;
 use crate::manifest::{self, SweepManifest};
 use crate::output;
 use crate::plot;
+use crate::signals;
 
 /// Flags of `tumble sweep`.
 #[derive(clap::Args, Debug)]
@@ -273,10 +274,22 @@ pub fn run(args: &Args) -> Result<()> {
         threads,
         shard,
         resume: args.resume,
-        cancel: None,
+        cancel: Some(signals::flag()),
     };
     let report = quiet_point_panics(|| sweep::run(&def, &dir, &config, &mut on_progress))?;
     bar.finish_and_clear();
+    if let Some(code) = signals::interrupted() {
+        return Err(signals::Interrupted {
+            code,
+            message: format!(
+                "{} of {} points are in {}; run the same command with --resume to finish",
+                report.rows.len(),
+                report.total,
+                dir.join("journal.csv").display()
+            ),
+        }
+        .into());
+    }
     finish(&def, &dir, &report, shard, "sweep", check)
 }
 

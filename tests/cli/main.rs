@@ -1,6 +1,7 @@
 //! Tests of the `tumble` binary: one module per subcommand, each running the built binary.
 
 mod inertia;
+mod interrupts;
 mod scenes;
 mod simulate;
 mod special_files;

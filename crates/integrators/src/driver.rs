@@ -161,6 +161,7 @@ pub struct Driver<'a> {
     max_steps: u64,
     h_max: f64,
     cancel: Option<&'a dyn Fn() -> bool>,
+    cancel_flag: Option<&'a std::sync::atomic::AtomicBool>,
     outputs: &'a [f64],
 }
 
@@ -191,6 +192,7 @@ impl<'a> Driver<'a> {
             max_steps: u64::MAX,
             h_max: t_end - t0,
             cancel: None,
+            cancel_flag: None,
             outputs: &[],
         })
     }
@@ -269,8 +271,19 @@ impl<'a> Driver<'a> {
         self
     }
 
+    /// End the run with [`Status::Cancelled`] once `flag` is set (polled before every step;
+    /// e.g. set by a signal handler).
+    #[must_use]
+    pub fn cancel_flag(mut self, flag: &'a std::sync::atomic::AtomicBool) -> Self {
+        self.cancel_flag = Some(flag);
+        self
+    }
+
     fn cancelled(&self) -> bool {
         self.cancel.is_some_and(|c| c())
+            || self
+                .cancel_flag
+                .is_some_and(|f| f.load(std::sync::atomic::Ordering::Relaxed))
     }
 
     /// Number of fixed steps and whether the last one is shorter.

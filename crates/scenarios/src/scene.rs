@@ -151,8 +151,21 @@ pub struct RunOptions {
     pub output_dt: Option<f64>,
     /// Stop with [`tumble_integrators::Error::TooManySteps`] after this many steps.
     pub max_steps: Option<u64>,
+    /// End the run early (status cancelled, `RunSummary::t` short of the horizon) once set.
+    pub cancel: Option<CancelFlag>,
     /// Which states are observed.
     pub observe: Observe,
+}
+
+/// A flag that ends runs early when set (by a signal handler, a user interface), polled before
+/// every step. Plans compare equal when they watch the same flag.
+#[derive(Debug, Clone, Copy)]
+pub struct CancelFlag(pub &'static std::sync::atomic::AtomicBool);
+
+impl PartialEq for CancelFlag {
+    fn eq(&self, other: &Self) -> bool {
+        std::ptr::eq(self.0, other.0)
+    }
 }
 
 /// A validated run: the method (from the registry) and the kind of problem it integrates the
@@ -174,6 +187,8 @@ pub struct RunPlan {
     pub times: Option<Vec<f64>>,
     /// Most steps a run may take.
     pub max_steps: u64,
+    /// Ends the run early once set.
+    pub cancel: Option<CancelFlag>,
     /// Which states are observed.
     pub observe: Observe,
 }
@@ -211,6 +226,9 @@ impl RunPlan {
     /// [`Observe::Ends`]) only at the start and the end.
     pub(crate) fn driver(&self) -> Result<Driver<'_>, SceneError> {
         let mut driver = Driver::new(0.0, self.t_end)?.max_steps(self.max_steps);
+        if let Some(CancelFlag(flag)) = self.cancel {
+            driver = driver.cancel_flag(flag);
+        }
         if let Some(times) = &self.times {
             driver = driver.output_at(times)?;
         }
@@ -285,6 +303,7 @@ impl RunOptions {
             every,
             times,
             max_steps: self.max_steps.unwrap_or(u64::MAX),
+            cancel: self.cancel,
             observe: self.observe,
         })
     }

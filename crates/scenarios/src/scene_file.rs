@@ -359,6 +359,7 @@ impl Source<'_> {
             at,
             output_dt,
             max_steps: None,
+            cancel: None,
             observe: crate::scene::Observe::EveryStep,
         };
         // Validate the table as a whole and point at the key the scene complains about.
@@ -442,6 +443,7 @@ mod tests {
                 at: None,
                 output_dt: None,
                 max_steps: None,
+                cancel: None,
                 observe: crate::scene::Observe::EveryStep,
             }
         );

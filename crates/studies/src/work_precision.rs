@@ -249,6 +249,7 @@ pub fn plan(
         at: None,
         output_dt: None,
         max_steps: None,
+        cancel: None,
         observe,
     }
     .resolve(info)

@@ -409,6 +409,7 @@ impl Draft {
             at: None,
             output_dt: None,
             max_steps: None,
+            cancel: None,
             observe: tumble_scenarios::scene::Observe::EveryStep,
         };
         options.resolve(info).map_err(|error| {
