@@ -5,23 +5,43 @@ use std::f64::consts::PI;
 use anyhow::{Context, Result, bail};
 use nalgebra::Vector3;
 
-/// Parses an angle or any number: `1.5`, `pi`, `-pi/2`, `2pi/3`, `3*pi/4`.
+/// Parses an angle or any number: `1.5`, `1e-3`, `pi`, `-pi/2`, `2pi/3`, `3*pi/4`.
+///
+/// The grammar is strict: a number; or an optional sign and coefficient, an optional single
+/// `*`, `pi`, and an optional `/DIVISOR` (a finite, non-zero number). An expression must give
+/// a finite value, and a number that underflows to zero (`1e-999`) is refused rather than read
+/// as 0; `2**pi`, `pi*2` and `2pi/0` are not angles.
 pub fn parse_angle(s: &str) -> Option<f64> {
     let t = s.trim().to_ascii_lowercase().replace(' ', "");
+    let number = |text: &str| -> Option<f64> {
+        let x = text.parse::<f64>().ok()?;
+        let nonzero_digits = text
+            .split(['e', 'E'])
+            .next()
+            .is_some_and(|m| m.chars().any(|c| ('1'..='9').contains(&c)));
+        (x.is_finite() && !(x == 0.0 && nonzero_digits)).then_some(x)
+    };
     if let Ok(x) = t.parse::<f64>() {
-        return Some(x);
+        // `inf` and `nan` go on to the parameter's own check, which names the domain; an
+        // underflow to zero is refused here.
+        return if x.is_finite() { number(&t) } else { Some(x) };
     }
     let (num, den) = match t.split_once('/') {
-        Some((n, d)) => (n.to_string(), d.parse::<f64>().ok()?),
-        None => (t.clone(), 1.0),
+        Some((n, d)) => (n, number(d).filter(|d| *d != 0.0)?),
+        None => (t.as_str(), 1.0),
     };
-    let coeff = num.strip_suffix("pi")?.trim_end_matches('*');
+    let coeff = num.strip_suffix("pi")?;
+    let coeff = coeff.strip_suffix('*').unwrap_or(coeff);
+    if coeff.ends_with('*') {
+        return None;
+    }
     let c = match coeff {
         "" | "+" => 1.0,
         "-" => -1.0,
-        other => other.parse::<f64>().ok()?,
+        other => number(other)?,
     };
-    Some(c * PI / den)
+    let x = c * PI / den;
+    (x.is_finite()).then_some(x)
 }
 
 /// Parses one `--set KEY=VALUE` (the value a number or an angle expression) into the trimmed
@@ -79,5 +99,26 @@ mod tests {
         assert_eq!(parse_angle("3*pi/4"), Some(3.0 * PI / 4.0));
         assert_eq!(parse_angle("pie"), None);
         assert_eq!(parse_angle("x"), None);
+    }
+
+    #[test]
+    fn angle_expressions_are_strict() {
+        for bad in [
+            "2**pi",
+            "pi*2",
+            "2pi/0",
+            "1e999pi",
+            "1e-999",
+            "3pi/1e-999",
+            "2 * * pi",
+        ] {
+            assert_eq!(parse_angle(bad), None, "{bad}");
+        }
+        assert_eq!(parse_angle("0"), Some(0.0));
+        assert_eq!(parse_angle("0.0e-5"), Some(0.0));
+        assert!(
+            parse_angle("nan").is_some_and(f64::is_nan),
+            "left to the domain check"
+        );
     }
 }

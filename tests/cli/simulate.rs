@@ -801,3 +801,56 @@ fn an_unresolved_motion_is_reported_not_hidden() {
     );
     assert!(!stderr(&out).contains("warning"), "{}", stderr(&out));
 }
+
+#[test]
+fn validation_holes_are_closed() {
+    // Angle expressions are strict: `2**pi` was read as 2π, `1e-999` as 0.
+    fails(
+        &[],
+        &[
+            "simulate",
+            "free-hoop",
+            "--set",
+            "alpha0=2**pi",
+            "-o",
+            "x.csv",
+        ],
+        &["`2**pi` is not a number"],
+    );
+    fails(
+        &[],
+        &[
+            "simulate",
+            "free-hoop",
+            "--set",
+            "alpha0=1e-999",
+            "-o",
+            "x.csv",
+        ],
+        &["`1e-999` is not a number"],
+    );
+    // A documented domain that the scene runs: a massless bead has no dynamics on the free
+    // hoop (every integrator failed at t = 0).
+    fails(
+        &[],
+        &["simulate", "free-hoop", "--set", "m=0", "-o", "x.csv"],
+        &["`m`", "positive"],
+    );
+    // A horizon that no step count can reach is refused by the plan, not by every step.
+    fails(
+        &[],
+        &["simulate", "free-body", "--t-end", "1e308", "-o", "x.csv"],
+        &["--dt 0.01", "more than 10^15"],
+    );
+    // A scene file with a 200 kB line: the excerpt shows a window around the error.
+    let long = format!(
+        "scene = \"free-body\"\n[parameters]\nI1 = \"{}\"\n",
+        "x".repeat(200_000)
+    );
+    let err = fails(
+        &[("long.toml", &long)],
+        &["simulate", "long.toml", "-o", "x.csv"],
+        &["long.toml:3"],
+    );
+    assert!(err.len() < 2_000, "{} bytes of error", err.len());
+}

@@ -490,3 +490,29 @@ fn a_second_writer_on_a_busy_folder_is_refused() {
     succeeds(tmp.path(), &["sweep", file, "-o", "busy", "--resume"]);
     assert!(!lock.exists());
 }
+
+/// An override that cannot apply is refused, not ignored: `axes.NAME.end` on an axis that
+/// lists its values.
+#[test]
+fn an_override_of_a_values_axis_is_refused() {
+    let tmp = tempfile::tempdir().unwrap();
+    let file = write_sweep(tmp.path(), "small.sweep.toml", &small(1.0, 4));
+    let out = tumble_in(
+        tmp.path(),
+        &[
+            "sweep",
+            file.to_str().unwrap(),
+            "--set",
+            "axes.alpha0.end=3",
+            "-o",
+            "o",
+        ],
+    );
+    assert_eq!(out.status.code(), Some(1));
+    assert!(
+        stderr(&out).contains("lists its `values`"),
+        "{}",
+        stderr(&out)
+    );
+    assert!(!tmp.path().join("o").exists());
+}

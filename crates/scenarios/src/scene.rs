@@ -404,6 +404,16 @@ fn check_step(method: &MethodInfo, step: StepControl, t_end: f64) -> Result<(), 
                     reason: "the step must be finite and positive".into(),
                 });
             }
+            if t_end / h > 1e15 {
+                return Err(SceneError::InvalidOption {
+                    option: "dt",
+                    value: h,
+                    reason: format!(
+                        "{:.1e} steps over the horizon t_end = {t_end}: more than 10^15",
+                        t_end / h
+                    ),
+                });
+            }
             if h > t_end {
                 return Err(SceneError::InvalidOption {
                     option: "dt",

@@ -147,6 +147,13 @@ pub fn parse<T: DeserializeOwned>(text: &str, origin: &str) -> Result<T, TomlFil
 #[must_use]
 pub fn describe(value: &toml::Value) -> String {
     match value {
+        toml::Value::String(s) if s.chars().count() > 60 => {
+            let head: String = s.chars().take(40).collect();
+            format!(
+                "a string of {} characters starting {head:?}…",
+                s.chars().count()
+            )
+        }
         toml::Value::String(s) => format!("a string {s:?}"),
         toml::Value::Integer(i) => format!("the integer {i}"),
         toml::Value::Float(x) => format!("the float {x}"),
@@ -166,8 +173,21 @@ pub fn excerpt(text: &str, at: &Location) -> String {
     let Some(source) = text.lines().nth(line - 1) else {
         return String::new();
     };
+    // A long line is cut to a window around the column (a 200 kB line is not echoed whole).
+    const WINDOW: usize = 60;
+    let chars: Vec<char> = source.chars().collect();
+    let col = column.saturating_sub(1).min(chars.len());
+    let (from, to) = if chars.len() <= 2 * WINDOW {
+        (0, chars.len())
+    } else {
+        let from = col.saturating_sub(WINDOW);
+        (from, (col + WINDOW).min(chars.len()))
+    };
+    let head = if from > 0 { "…" } else { "" };
+    let tail = if to < chars.len() { "…" } else { "" };
+    let shown: String = chars[from..to].iter().collect();
     format!(
-        "\n    {line:>4} | {source}\n         | {}^",
-        " ".repeat(column.saturating_sub(1))
+        "\n    {line:>4} | {head}{shown}{tail}\n         | {}^",
+        " ".repeat(col - from + head.chars().count())
     )
 }

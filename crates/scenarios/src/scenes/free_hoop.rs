@@ -235,8 +235,9 @@ static SPECS: [ParamSpec; 8] = [
         name: "m",
         default: 0.1,
         unit: "kg",
-        description: "bead mass",
-        domain: Domain::NonNegative,
+        description: "bead mass (positive: without a bead the hoop is a free body, and the bead \
+                      angle has no dynamics)",
+        domain: Domain::Positive,
     },
     ParamSpec {
         name: "a",

@@ -230,6 +230,12 @@ impl Draft {
                         swept.join(", ")
                     )));
                 };
+                if axis.values.is_some() {
+                    return Err(invalid(format!(
+                        "the axis of `{name}` lists its `values`; it has no {field} to \
+                         override (a `range` axis does)"
+                    )));
+                }
                 match *field {
                     "count" => axis.count = Some(value),
                     "start" => axis.start = Some(value),
