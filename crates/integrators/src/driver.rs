@@ -49,6 +49,53 @@ pub trait Observer<S> {
         let _ = (t, state);
         Flow::Continue
     }
+
+    /// Whether this observer wants [`Observer::dense_step`] after every step (runs with dense
+    /// output only). The default is no.
+    fn wants_dense_steps(&self) -> bool {
+        false
+    }
+
+    /// Called after every step of a run with dense output (when
+    /// [`Observer::wants_dense_steps`]), before [`Observer::observe`] sees the step's end: the
+    /// continuous extension of the step, to evaluate anywhere on it. The default does nothing.
+    fn dense_step(&mut self, step: &mut dyn DenseStep<S>) -> Flow {
+        let _ = step;
+        Flow::Continue
+    }
+}
+
+/// The continuous extension of the last step, as [`Observer::dense_step`] sees it.
+pub trait DenseStep<S> {
+    /// `(t₀, t₁)` of the step.
+    fn span(&self) -> (f64, f64);
+    /// The state at `t ∈ [t₀, t₁]` from the stepper's dense output (at `t₁`, the step's own
+    /// result).
+    fn state_at(&mut self, t: f64) -> &S;
+}
+
+/// [`DenseStep`] over a stepper with dense output.
+struct DenseView<'s, P: ?Sized, St: Stepper<P>> {
+    stepper: &'s mut St,
+    problem: &'s P,
+    t0: f64,
+    t1: f64,
+    end: &'s St::State,
+    scratch: &'s mut St::State,
+}
+
+impl<P: ?Sized, St: DenseOutput<P>> DenseStep<St::State> for DenseView<'_, P, St> {
+    fn span(&self) -> (f64, f64) {
+        (self.t0, self.t1)
+    }
+
+    fn state_at(&mut self, t: f64) -> &St::State {
+        if t == self.t1 {
+            return self.end;
+        }
+        self.stepper.interpolate(self.problem, t, self.scratch);
+        self.scratch
+    }
 }
 
 /// The observer that does nothing.
@@ -646,6 +693,8 @@ struct EventTracker<'e, 'f, 'o, S> {
     /// Output times and the index of the next one to deliver.
     outputs: &'o [f64],
     next_output: usize,
+    /// The observer wants every step's dense output.
+    dense: bool,
 }
 
 impl<'e, 'f, 'o, S: VectorState> EventTracker<'e, 'f, 'o, S> {
@@ -659,6 +708,7 @@ impl<'e, 'f, 'o, S: VectorState> EventTracker<'e, 'f, 'o, S> {
             found: Vec::with_capacity(n),
             outputs,
             next_output: 0,
+            dense: false,
         }
     }
 }
@@ -686,7 +736,8 @@ where
         for (g, ev) in self.g_prev.iter_mut().zip(self.events.iter()) {
             *g = (ev.function)(t, state);
         }
-        if !self.events.is_empty() || !self.outputs.is_empty() {
+        self.dense = observer.wants_dense_steps();
+        if !self.events.is_empty() || !self.outputs.is_empty() || self.dense {
             self.scratch = Some(state.zeros_like());
         }
         while self.outputs.get(self.next_output) == Some(&t) {
@@ -707,7 +758,7 @@ where
         report: &mut Report<St::State>,
         observer: &mut O,
     ) -> AfterStep {
-        if self.events.is_empty() && self.outputs.is_empty() {
+        if self.events.is_empty() && self.outputs.is_empty() && !self.dense {
             return AfterStep::Go;
         }
         let t0 = self.t_prev;
@@ -725,6 +776,19 @@ where
             self.g_prev[i] = g1;
         }
         self.t_prev = t1;
+        if self.dense {
+            let mut view = DenseView {
+                stepper: &mut *stepper,
+                problem,
+                t0,
+                t1,
+                end: &*state,
+                scratch: &mut *scratch,
+            };
+            if observer.dense_step(&mut view) == Flow::Stop {
+                return AfterStep::Stopped;
+            }
+        }
         self.found.sort_by(|a, b| a.0.total_cmp(&b.0));
         // The run ends at the first terminal event, if any: outputs after it are not reached.
         let end = self

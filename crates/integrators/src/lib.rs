@@ -83,8 +83,8 @@ pub mod verification;
 pub use composition::Composition;
 pub use control::PiController;
 pub use driver::{
-    Action, Direction, Driver, Event, EventRecord, Flow, FnObserver, NoObserver, Observer, Report,
-    Status,
+    Action, DenseStep, Direction, Driver, Event, EventRecord, Flow, FnObserver, NoObserver,
+    Observer, Report, Status,
 };
 pub use error::Error;
 pub use explicit::{Dop853, Dp5, ExplicitRkStepper, ExplicitRungeKutta, Rk4};

@@ -105,7 +105,7 @@ where
             macro_rules! fixed {
                 ($stepper:expr) => {{
                     let mut stepper = $stepper;
-                    if events.is_empty() && plan.times.is_none() {
+                    if events.is_empty() && plan.times.is_none() && !observer.wants_dense_steps() {
                         driver.run_fixed(&mut stepper, &counted, y, h, observer)?
                     } else {
                         driver.run_fixed_with_events(

@@ -35,5 +35,6 @@ pub use error::{ModelError, SceneError};
 pub use lagrangian::{EulerLagrange, Lagrangian, LagrangianOde};
 pub use params::{Domain, ParamSpec, Params};
 pub use scene::{
-    Guide, Observe, Recorder, RunOptions, RunPlan, RunSummary, Scene, SceneInfo, StepControl,
+    DenseRows, Guide, Observe, Recorder, RunOptions, RunPlan, RunSummary, Scene, SceneInfo,
+    StepControl,
 };

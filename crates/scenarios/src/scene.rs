@@ -9,7 +9,7 @@
 
 use nalgebra::SVector;
 use tumble_integrators::registry::{self, MethodInfo};
-use tumble_integrators::{Driver, Event, Flow, Observer, Ode, ProblemKind};
+use tumble_integrators::{DenseStep, Driver, Event, Flow, Observer, Ode, ProblemKind};
 
 use crate::dispatch;
 use crate::error::SceneError;
@@ -455,6 +455,47 @@ fn check_step(method: &MethodInfo, step: StepControl, t_end: f64) -> Result<(), 
 pub trait Recorder {
     /// One row; return [`Flow::Stop`] to end the run early (e.g. after a write error).
     fn row(&mut self, values: &[f64]) -> Flow;
+
+    /// Whether the recorder wants every step's rows as a continuous function of time
+    /// ([`Recorder::dense_rows`]; methods with dense output only). The default is no.
+    fn wants_dense_rows(&self) -> bool {
+        false
+    }
+
+    /// The rows of the last step at any time in it, from the method's dense output: called
+    /// after each step, before the row of the step's end (when [`Recorder::wants_dense_rows`]
+    /// and the method has dense output). The default does nothing.
+    fn dense_rows(&mut self, rows: &mut dyn DenseRows) -> Flow {
+        let _ = rows;
+        Flow::Continue
+    }
+}
+
+/// The rows of one step at any time in it; see [`Recorder::dense_rows`].
+pub trait DenseRows {
+    /// `(t₀, t₁)` of the step.
+    fn span(&self) -> (f64, f64);
+    /// The row at `t ∈ [t₀, t₁]` (`t`, coordinates, rates, diagnostics), from dense output.
+    fn row_at(&mut self, t: f64) -> &[f64];
+}
+
+/// [`DenseRows`] from a step's dense states and a scene's row function.
+struct RowsView<'v, S, F> {
+    step: &'v mut dyn DenseStep<S>,
+    row: &'v mut F,
+    buffer: &'v mut [f64],
+}
+
+impl<S, F: FnMut(f64, &S, &mut [f64])> DenseRows for RowsView<'_, S, F> {
+    fn span(&self) -> (f64, f64) {
+        self.step.span()
+    }
+
+    fn row_at(&mut self, t: f64) -> &[f64] {
+        let state = self.step.state_at(t);
+        (self.row)(t, state, self.buffer);
+        self.buffer
+    }
 }
 
 /// A recorder that keeps nothing.
@@ -613,6 +654,8 @@ pub(crate) struct RowObserver<'a, S, F> {
     /// Time of the last row written.
     last_written: f64,
     stopped: bool,
+    /// Rows evaluated inside steps for [`Recorder::dense_rows`].
+    dense_buffer: Vec<f64>,
     recorder: &'a mut dyn Recorder,
     state: std::marker::PhantomData<fn(&S)>,
 }
@@ -640,6 +683,7 @@ impl<'a, S, F: FnMut(f64, &S, &mut [f64])> RowObserver<'a, S, F> {
             pending: false,
             last_written: f64::NEG_INFINITY,
             stopped: false,
+            dense_buffer: vec![0.0; columns],
             recorder,
             state: std::marker::PhantomData,
         }
@@ -704,6 +748,19 @@ impl<S, F: FnMut(f64, &S, &mut [f64])> Observer<S> for RowObserver<'_, S, F> {
     fn output(&mut self, t: f64, state: &S) -> Flow {
         self.fill(t, state);
         self.write(t)
+    }
+
+    fn wants_dense_steps(&self) -> bool {
+        self.recorder.wants_dense_rows()
+    }
+
+    fn dense_step(&mut self, step: &mut dyn DenseStep<S>) -> Flow {
+        let mut view = RowsView {
+            step,
+            row: &mut self.row,
+            buffer: &mut self.dense_buffer,
+        };
+        self.recorder.dense_rows(&mut view)
     }
 }
 

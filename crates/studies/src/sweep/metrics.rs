@@ -36,7 +36,7 @@ use tumble_integrators::Flow;
 
 use tumble_scenarios::error::SceneError;
 use tumble_scenarios::params::Params;
-use tumble_scenarios::scene::{Recorder, Scene};
+use tumble_scenarios::scene::{DenseRows, Recorder, Scene};
 
 /// A quantity recorded for every point of a sweep.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -252,6 +252,9 @@ struct TiltTracker {
     /// (the crossing in `[t_k, t_{k+1}]` is solved once samples up to `k + 3` have arrived, or
     /// at the end).
     pending: Option<usize>,
+    /// The method's dense output gives every step's tilt as a function of time: maxima and
+    /// crossings come from it, not from the samples.
+    dense: bool,
 }
 
 impl TiltTracker {
@@ -264,6 +267,29 @@ impl TiltTracker {
             threshold: threshold.map(f64::sin),
             crossing: None,
             pending: None,
+            dense: false,
+        }
+    }
+
+    /// One step `[t₀, t₁]` from dense output: `s = sin τ` at the Chebyshev–Lobatto nodes
+    /// `θ = (1 − cos(kπ/4))/2`, `k = 0…4`, and the quartic through them, whose error is that of
+    /// the dense output plus `O(h⁵)` with the small constant of one step; its maximum on the
+    /// step (where its derivative changes sign), and the threshold's first crossing.
+    fn step(&mut self, nodes: &[(f64, f64); 5]) {
+        self.dense = true;
+        let p = Interpolant::new(nodes);
+        let (t0, t_mid, t1) = (nodes[0].0, nodes[2].0, nodes[4].0);
+        let best = p.max_on(t0, t_mid, t1);
+        if best.is_finite() {
+            self.max_s = self.max_s.max(best);
+        }
+        if let Some(c) = self.threshold
+            && self.crossing.is_none()
+            && let Some(k) = (1..5).find(|&k| nodes[k].1 > c)
+            && nodes[k - 1].1 <= c
+        {
+            let t = Interpolant::bisect(nodes[k - 1].0, nodes[k].0, true, |t| p.eval(t).0 - c);
+            self.crossing = Some(t);
         }
     }
 
@@ -277,6 +303,12 @@ impl TiltTracker {
         let s = tilt.sin();
         self.last_tilt = tilt;
         self.max_s = self.max_s.max(s);
+        if self.dense {
+            self.window.clear();
+            self.window.push((t, s));
+            self.count += 1;
+            return;
+        }
         if self.window.len() == 5 {
             self.window.remove(0);
             if let Some(k) = self.pending.as_mut() {
@@ -362,6 +394,9 @@ impl TiltTracker {
 
     /// At the end of the run: the stencils that the last samples leave open.
     fn finish(&mut self) {
+        if self.dense {
+            return;
+        }
         let n = self.window.len();
         if n >= 3 {
             self.refine_max(n - 2);
@@ -495,6 +530,34 @@ impl MetricRecorder {
 }
 
 impl Recorder for MetricRecorder {
+    fn wants_dense_rows(&self) -> bool {
+        self.tilt.is_some() && self.tilt_column.is_some()
+    }
+
+    fn dense_rows(&mut self, rows: &mut dyn DenseRows) -> Flow {
+        let (Some(tilt), Some(j)) = (&mut self.tilt, self.tilt_column) else {
+            return Flow::Continue;
+        };
+        let (t0, t1) = rows.span();
+        let mut nodes = [(0.0, 0.0); 5];
+        for (k, node) in nodes.iter_mut().enumerate() {
+            let theta = 0.5 * (1.0 - (std::f64::consts::FRAC_PI_4 * k as f64).cos());
+            let t = match k {
+                0 => t0,
+                4 => t1,
+                _ => t0 + theta * (t1 - t0),
+            };
+            let value = rows.row_at(t)[j];
+            if !value.is_finite() {
+                // The row at the step's end reports it with its time and column.
+                return Flow::Continue;
+            }
+            *node = (t, value.sin());
+        }
+        tilt.step(&nodes);
+        Flow::Continue
+    }
+
     fn row(&mut self, values: &[f64]) -> Flow {
         if let Some(j) = values.iter().position(|v| !v.is_finite()) {
             self.failure = Some(format!(

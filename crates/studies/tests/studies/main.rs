@@ -1,4 +1,5 @@
 //! Integration tests of tumble-studies: one binary, one module per feature.
 
 mod default_accuracy;
+mod max_tilt_reference;
 mod work_precision;
