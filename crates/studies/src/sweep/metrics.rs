@@ -1,24 +1,26 @@
 //! Metrics of one sweep point, computed by a [`Recorder`] while the scene integrates: nothing
-//! of the trajectory is kept but a window of the last five samples.
+//! of the trajectory is kept but the current step.
 //!
 //! # Hoop metrics (scenes with a `tilt` column)
 //!
-//! The tilt `τ = asin|n_z|` is sampled at the integrator's steps. Its extremes and threshold
-//! crossings fall between samples, and taking the largest sample would make `max_tilt` depend
-//! on the step (by `½ τ'' δt²` at the maximum, about 1e-5 rad at `δt = 0.01` and a few rad/s),
-//! which is not a property of the motion. So the signal `s = sin τ = |n_z|` (smooth wherever
-//! `n_z ≠ 0`, also near a horizontal hoop where `τ` itself has unbounded curvature) is
-//! interpolated by the polynomial through the five samples around each event (Newton divided
-//! differences on the actual sample times, fourth degree, error `O(δt⁵)`):
+//! The tilt `τ = asin|n_z|` is a property of the motion, not of where the steps fall, so its
+//! extremes and threshold crossings are located between steps. The signal used is
+//! `s = sin τ = |n_z|` (smooth wherever `n_z ≠ 0`, also near a horizontal hoop where `τ` itself
+//! has unbounded curvature).
 //!
-//! * `max_tilt`: at every sample that is a local maximum of `s`, the maximum of the
-//!   interpolant over the two neighbouring intervals (the root of its derivative, found by
-//!   bisection), and likewise inside the first and the last interval of the run, where a
-//!   maximum shows in no sample (the tilt peaking between the last step and `t_end`); the
-//!   result is the largest of these and of every sample, as `asin(min(s, 1))`.
-//! * `final_tilt`: the tilt of the last sample (`t = t_end` exactly).
-//! * `time_tilt_exceeds`: the first time `τ > τ_c` (the file's `tilt_threshold`), the root of
-//!   `p(t) = sin τ_c` in the interval where the samples first cross it; empty when never.
+//! * **With dense output** (explicit Runge–Kutta, Gauss–Legendre): every step `[t₀, t₁]` is
+//!   seen as a function of time ([`Recorder::dense_rows`]); `s` is evaluated at the five
+//!   Chebyshev–Lobatto points `θ = (1 − cos(kπ/4))/2` of the step and the quartic through
+//!   them carries the step: its error is the dense output's plus `O(h⁵)` with the constant of
+//!   one step. `max_tilt` is the largest value of these quartics (their interior maxima found
+//!   where the derivative changes sign, by bisection to the last bit), `time_tilt_exceeds` the
+//!   first root of `p(t) = sin τ_c`.
+//! * **Without** (the LGVI, splittings, Lie-group methods): the polynomial through the five
+//!   samples around each event (Newton divided differences on the sample times, error
+//!   `O(δt⁵)`), at every sample that is a local maximum of `s` and inside the first and last
+//!   interval, and for the crossing in the interval where the samples first cross.
+//!
+//! `final_tilt` is the tilt of the last sample (`t = t_end` exactly).
 //!
 //! # Other metrics
 //!

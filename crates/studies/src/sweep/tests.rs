@@ -713,7 +713,7 @@ fn tilt_map_values_change_by_less_than_1e_6_rad_when_the_step_is_halved() {
 }
 
 /// Every point of the built-in map (about two minutes in release on 2 cores):
-/// `cargo test --release -p tumble-scenarios -- --ignored tilt_map_is_converged --nocapture`.
+/// `cargo test --release -p tumble-studies -- --ignored tilt_map_is_converged --nocapture`.
 #[test]
 #[ignore = "runs the whole built-in map twice; use --release"]
 fn tilt_map_is_converged() {
