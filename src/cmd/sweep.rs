@@ -28,10 +28,11 @@ use std::time::Duration;
 use anyhow::{Result, bail};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use tumble_studies::sweep::{
-    self, CheckSize, Metric, Override, Progress, RunConfig, Shard, SweepDefinition, SweepReport,
+    self, CheckSize, Metric, Override, OverrideValue, Progress, RunConfig, Shard, SweepDefinition,
+    SweepReport,
 };
 
-use super::args::parse_set;
+use super::args::{parse_angle, parse_set};
 use crate::manifest::{self, SweepManifest};
 use crate::output;
 use crate::plot;
@@ -207,7 +208,32 @@ impl PointsFailed {
 
 /// Parses one `--set KEY=VALUE`.
 fn parse_override(raw: &str) -> Result<Override> {
-    let (key, value) = parse_set(raw, "run.dt=0.005")?;
+    let Some((key, text)) = raw.split_once('=') else {
+        bail!("--set {raw}: expected KEY=VALUE, e.g. --set run.dt=0.005 or --set theta0=pi/3");
+    };
+    let key = key.trim();
+    let text = text.trim();
+    let value = if Override::takes_text(key) {
+        if text.is_empty() {
+            bail!("--set {raw}: the value is empty");
+        }
+        OverrideValue::Text(text.to_string())
+    } else if Override::takes_list(key) {
+        let Some(inner) = text.strip_prefix('[').and_then(|t| t.strip_suffix(']')) else {
+            bail!("--set {raw}: expected a list such as [0.5, 1, pi/2]");
+        };
+        let values = inner
+            .split(',')
+            .map(|v| {
+                parse_angle(v)
+                    .ok_or_else(|| anyhow::anyhow!("--set {raw}: `{}` is not a number", v.trim()))
+            })
+            .collect::<Result<Vec<f64>>>()?;
+        OverrideValue::List(values)
+    } else {
+        let (_, x) = parse_set(raw, "run.dt=0.005")?;
+        OverrideValue::Number(x)
+    };
     Ok(Override {
         key: key.to_string(),
         value,
@@ -548,7 +574,19 @@ mod tests {
     fn overrides_parse_angles_and_reject_junk() {
         let o = parse_override("theta0=pi/3").unwrap();
         assert_eq!(o.key, "theta0");
-        assert!((o.value - std::f64::consts::PI / 3.0).abs() < 1e-15);
+        assert_eq!(o.value, OverrideValue::Number(std::f64::consts::PI / 3.0));
+        assert_eq!(
+            parse_override("run.integrator=dop853").unwrap().value,
+            OverrideValue::Text("dop853".into())
+        );
+        assert_eq!(
+            parse_override("axes.alpha0.values=[0.5, pi/2]")
+                .unwrap()
+                .value,
+            OverrideValue::List(vec![0.5, std::f64::consts::FRAC_PI_2])
+        );
+        assert!(parse_override("axes.alpha0.values=0.5").is_err());
+        assert!(parse_override("axes.alpha0.values=[0.5, x]").is_err());
         assert!(parse_override("run.dt").is_err());
         assert!(parse_override("=1").is_err());
         assert!(parse_override("g=heavy").is_err());

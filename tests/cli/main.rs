@@ -2,6 +2,7 @@
 
 mod inertia;
 mod interrupts;
+mod outputs_and_limits;
 mod scenes;
 mod simulate;
 mod special_files;

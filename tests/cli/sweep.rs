@@ -516,3 +516,58 @@ fn an_override_of_a_values_axis_is_refused() {
     );
     assert!(!tmp.path().join("o").exists());
 }
+
+/// Integrator studies from the command line: `run.integrator` with `run.tol` (which clears the
+/// file's `run.dt`), `axes.NAME.values`, `axes.NAME.spacing`; bad values refused before any
+/// point runs.
+#[test]
+fn integrator_studies_from_the_command_line() {
+    let tmp = tempfile::tempdir().unwrap();
+    let file = write_sweep(tmp.path(), "small.sweep.toml", &small(1.0, 4));
+    let file = file.to_str().unwrap();
+    succeeds(
+        tmp.path(),
+        &[
+            "sweep",
+            file,
+            "--set",
+            "run.integrator=dop853",
+            "--set",
+            "run.tol=1e-11",
+            "--set",
+            "axes.alpha0.values=[0.5, pi/2, 2.5]",
+            "-o",
+            "dop",
+        ],
+    );
+    let m = manifest(&tmp.path().join("dop"));
+    assert_eq!(m["integrator"], "dop853");
+    assert_eq!(m["tol"], 1e-11);
+    assert!(m["dt"].is_null());
+    assert_eq!(m["points"], 12);
+    let toml = read(&tmp.path().join("dop/sweep.toml"));
+    assert!(toml.contains("integrator = \"dop853\""), "{toml}");
+    succeeds(
+        tmp.path(),
+        &[
+            "sweep",
+            file,
+            "--set",
+            "axes.omega0.spacing=log",
+            "-o",
+            "log",
+        ],
+    );
+    for (set, expect) in [
+        ("run.integrator=verlet", "verlet"),
+        ("run.integrator=dop853", "adaptive: give a tolerance"),
+        ("axes.omega0.spacing=cubic", "spacing"),
+        ("axes.omega0.values=0.5", "expected a list"),
+        ("run.dt=fast", "`fast` is not a number"),
+    ] {
+        let out = tumble_in(tmp.path(), &["sweep", file, "--set", set, "-o", "bad"]);
+        assert_eq!(out.status.code(), Some(1), "{set}: {}", stderr(&out));
+        assert!(stderr(&out).contains(expect), "{set}: {}", stderr(&out));
+        assert!(!tmp.path().join("bad").exists(), "{set}");
+    }
+}

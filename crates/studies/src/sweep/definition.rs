@@ -4,9 +4,10 @@
 use std::fmt;
 use std::path::Path;
 
-use super::draft::{Draft, Override};
+use super::draft::Draft;
 use super::file_error::SweepFileError;
 use super::metrics::Metric;
+use super::overrides::Override;
 use tumble_scenarios::params::Params;
 use tumble_scenarios::scene::{RunPlan, Scene, StepControl};
 use tumble_scenarios::toml_file;
@@ -105,7 +106,7 @@ impl Axis {
                         }
                         _ => (start * (m - k) + end * k) / m,
                     },
-                    Spacing::Log => start * (end / start).powf(k / m),
+                    Spacing::Log => log_value(*start, *end, k, m),
                 }
             }
         }
@@ -134,6 +135,26 @@ impl Axis {
             },
         }
     }
+}
+
+/// The `k`-th of `m + 1` log-spaced values from `start` to `end`: `10^(a + (b − a) k/m)` with
+/// `a, b` the decimal logarithms; a value whose exponent is a whole number (to round-off) is the
+/// decade itself, parsed from its decimal form, so that `1e-4` is `1e-4` and not
+/// `0.00010000000000000002` (the signs of `start` and `end` are equal; a negative range is the
+/// mirror image).
+fn log_value(start: f64, end: f64, k: f64, m: f64) -> f64 {
+    let sign = start.signum();
+    let (a, b) = (start.abs().log10(), end.abs().log10());
+    let exponent = a + (b - a) * k / m;
+    let rounded = exponent.round();
+    let value = if (exponent - rounded).abs() <= 1e-12 * exponent.abs().max(1.0) {
+        format!("1e{rounded}")
+            .parse::<f64>()
+            .unwrap_or(10f64.powf(rounded))
+    } else {
+        10f64.powf(exponent)
+    };
+    sign * value
 }
 
 /// `(S, E, 10ᵖ)` with the smallest `p ≤ 15` such that `S·10⁻ᵖ` and `E·10⁻ᵖ` (integers `S`, `E`

@@ -10,6 +10,7 @@ use toml::Spanned;
 use super::definition::{Axis, AxisValues, MAX_POINTS, Sampling, Spacing, SweepDefinition};
 use super::file_error::{Origin, SweepFileError};
 use super::metrics::Metric;
+use super::overrides::{Override, OverrideValue};
 use super::raw::{RawNumber, RawRun, RawSweep};
 use super::value::{Num, Src};
 use tumble_scenarios::error::SceneError;
@@ -17,19 +18,6 @@ use tumble_scenarios::params::Params;
 use tumble_scenarios::scene::{RunOptions, RunPlan, Scene, StepControl};
 use tumble_scenarios::scenes;
 use tumble_scenarios::toml_file::{self, Location, TomlFileError};
-
-/// A command-line override of one key of a sweep definition (`--set KEY=VALUE`).
-#[derive(Debug, Clone, PartialEq)]
-pub struct Override {
-    /// The key: a scene parameter (`omega0` or `parameters.omega0`), `run.dt`, `run.tol`,
-    /// `run.t_end`, `metrics.tilt_threshold`, `random.samples`, `random.seed`, or
-    /// `axes.NAME.count`, `axes.NAME.start`, `axes.NAME.end`.
-    pub key: String,
-    /// The value.
-    pub value: f64,
-    /// As typed, for messages (`run.dt=5e-3`).
-    pub text: String,
-}
 
 #[derive(Debug, Clone)]
 struct DraftAxis {
@@ -172,15 +160,37 @@ impl Draft {
     /// Replaces (or adds) the key an override names.
     pub(super) fn apply(&mut self, o: &Override) -> Result<(), SweepFileError> {
         let at = Origin::Override(o.text.clone());
-        let value = Src {
-            value: Num::Float(o.value),
-            at: at.clone(),
-        };
         let invalid = |reason: String| SweepFileError::Invalid {
             at: at.clone(),
             key: o.key.clone(),
             reason,
         };
+        let wants = if Override::takes_text(&o.key) {
+            "a name"
+        } else if Override::takes_list(&o.key) {
+            "a list of numbers such as [0.5, 1, pi/2]"
+        } else {
+            "a number"
+        };
+        let mismatch = || invalid(format!("expects {wants}"));
+        let number = match &o.value {
+            OverrideValue::Number(x) => Some(*x),
+            _ => None,
+        };
+        let value = Src {
+            value: Num::Float(number.unwrap_or(f64::NAN)),
+            at: at.clone(),
+        };
+        match (
+            &o.value,
+            Override::takes_text(&o.key),
+            Override::takes_list(&o.key),
+        ) {
+            (OverrideValue::Text(_), true, _)
+            | (OverrideValue::List(_), _, true)
+            | (OverrideValue::Number(_), false, false) => {}
+            _ => return Err(mismatch()),
+        }
         let parts: Vec<&str> = o.key.split('.').collect();
         match parts.as_slice() {
             [name] | ["parameters", name] => {
@@ -197,8 +207,23 @@ impl Draft {
                     None => self.parameters.push((name, value)),
                 }
             }
-            ["run", "dt"] => self.dt = Some(value),
-            ["run", "tol"] => self.tol = Some(value),
+            ["run", "integrator"] => {
+                if let OverrideValue::Text(name) = &o.value {
+                    self.integrator = Some(Src {
+                        value: name.clone(),
+                        at: at.clone(),
+                    });
+                }
+            }
+            // A run has a step or a tolerance: setting one clears the other.
+            ["run", "dt"] => {
+                self.dt = Some(value);
+                self.tol = None;
+            }
+            ["run", "tol"] => {
+                self.tol = Some(value);
+                self.dt = None;
+            }
             ["run", "t_end"] => self.t_end = Some(value),
             ["metrics", "tilt_threshold"] => self.tilt_threshold = Some(value),
             ["random", which @ ("samples" | "seed")] => {
@@ -214,7 +239,11 @@ impl Draft {
                     random.2 = Some(value);
                 }
             }
-            ["axes", name, field @ ("count" | "start" | "end")] => {
+            [
+                "axes",
+                name,
+                field @ ("count" | "start" | "end" | "spacing" | "values"),
+            ] => {
                 let Some(axis) = self
                     .axes
                     .iter_mut()
@@ -230,6 +259,27 @@ impl Draft {
                         swept.join(", ")
                     )));
                 };
+                if *field == "values" {
+                    // The axis becomes a list: its range keys no longer apply.
+                    if let OverrideValue::List(list) = &o.value {
+                        axis.values = Some(Src {
+                            value: list
+                                .iter()
+                                .map(|&x| Src {
+                                    value: Num::Float(x),
+                                    at: at.clone(),
+                                })
+                                .collect(),
+                            at: at.clone(),
+                        });
+                        axis.start = None;
+                        axis.end = None;
+                        axis.range = None;
+                        axis.count = None;
+                        axis.spacing = None;
+                    }
+                    return Ok(());
+                }
                 if axis.values.is_some() {
                     return Err(invalid(format!(
                         "the axis of `{name}` lists its `values`; it has no {field} to \
@@ -239,14 +289,23 @@ impl Draft {
                 match *field {
                     "count" => axis.count = Some(value),
                     "start" => axis.start = Some(value),
+                    "spacing" => {
+                        if let OverrideValue::Text(spacing) = &o.value {
+                            axis.spacing = Some(Src {
+                                value: spacing.clone(),
+                                at: at.clone(),
+                            });
+                        }
+                    }
                     _ => axis.end = Some(value),
                 }
             }
             _ => {
                 return Err(invalid(
                     "unknown key; --set takes a scene parameter (NAME or parameters.NAME), \
-                     run.dt, run.tol, run.t_end, metrics.tilt_threshold, random.samples, \
-                     random.seed, or axes.NAME.count, axes.NAME.start, axes.NAME.end"
+                     run.integrator, run.dt, run.tol, run.t_end, metrics.tilt_threshold, \
+                     random.samples, random.seed, or axes.NAME.count, axes.NAME.start, \
+                     axes.NAME.end, axes.NAME.spacing, axes.NAME.values"
                         .into(),
                 ));
             }

@@ -77,6 +77,7 @@ mod engine;
 pub mod file_error;
 pub mod journal;
 pub mod metrics;
+mod overrides;
 mod raw;
 mod value;
 
@@ -85,11 +86,11 @@ use std::path::PathBuf;
 
 pub use check::{CheckReport, CheckSize, MetricChange, check_points, self_check};
 pub use definition::{Axis, AxisValues, Sampling, Spacing, SweepDefinition};
-pub use draft::Override;
 pub use engine::{Progress, RunConfig, SweepReport, merge, run, run_point};
 pub use file_error::{Origin, SweepFileError};
 pub use journal::{DEFINITION, JOURNAL, PointRow, RESULTS, Status, results_csv};
 pub use metrics::Metric;
+pub use overrides::{Override, OverrideValue};
 
 /// The built-in hoop-tilt map (`tumble sweep` without a file): how far the free hoop tilts
 /// against its initial spin and the bead's starting angle. See the file for the choices.

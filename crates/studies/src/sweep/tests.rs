@@ -15,7 +15,7 @@ fn parse(text: &str) -> Result<SweepDefinition, SweepFileError> {
 fn set(key: &str, value: f64) -> Override {
     Override {
         key: key.to_string(),
-        value,
+        value: super::OverrideValue::Number(value),
         text: format!("{key}={value}"),
     }
 }
@@ -745,4 +745,27 @@ fn self_check_points_are_the_corners_and_a_spread_and_depend_only_on_the_definit
     assert!(points.windows(2).all(|w| w[0] < w[1]));
     assert!(check_points(&def, CheckSize::Off).is_empty());
     assert_eq!(check_points(&small(), CheckSize::Points(100)).len(), 6);
+}
+
+#[test]
+fn log_spaced_values_land_exactly_on_decades() {
+    let text = SMALL.replace(
+        "parameter = \"alpha0\"\nvalues = [0.5, 2.0]",
+        "parameter = \"alpha0\"\nrange = [1e-6, 1.0]\ncount = 13\nspacing = \"log\"",
+    );
+    let def = parse(&text).unwrap();
+    let values = def.axes[1].grid_values();
+    for (k, decade) in [
+        (0, 1e-6),
+        (2, 1e-5),
+        (4, 1e-4),
+        (6, 1e-3),
+        (8, 1e-2),
+        (10, 0.1),
+        (12, 1.0),
+    ] {
+        assert_eq!(values[k], decade, "{values:?}");
+    }
+    // Between decades: 10^(-5.5), to round-off.
+    assert!((values[1] / 10f64.powf(-5.5) - 1.0).abs() < 1e-15);
 }

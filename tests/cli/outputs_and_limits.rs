@@ -1,0 +1,300 @@
+//! Rows at chosen times, the final state always written, budgets refused before any step, an
+//! unresolved motion reported, and validation holes closed.
+
+use tempfile::TempDir;
+
+use crate::simulate::fails;
+use crate::support::{stderr, succeeds};
+
+#[test]
+fn rows_at_chosen_times_and_every_interval_end_with_the_final_state() {
+    let dir = TempDir::new().unwrap();
+    let out = succeeds(
+        dir.path(),
+        &[
+            "simulate",
+            "coriolis-drop",
+            "--output-dt",
+            "1",
+            "--integrator",
+            "gauss8",
+            "--dt",
+            "0.01",
+        ],
+    );
+    let text = String::from_utf8(out.stdout.clone()).unwrap();
+    let times: Vec<f64> = text
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').next().unwrap().parse().unwrap())
+        .collect();
+    // Rows at 0, 1, 2, 3, 4 s and the landing (the terminal event) at about 4.515 s.
+    assert_eq!(&times[..5], &[0.0, 1.0, 2.0, 3.0, 4.0]);
+    assert_eq!(times.len(), 6);
+    assert!((times[5] - 4.5152).abs() < 1e-3, "{times:?}");
+    assert!(stderr(&out).contains("at 61 chosen times from dense output"));
+    let out = succeeds(
+        dir.path(),
+        &[
+            "simulate",
+            "free-body",
+            "--dt",
+            "0.001",
+            "--t-end",
+            "1",
+            "--every",
+            "300",
+        ],
+    );
+    let last = String::from_utf8(out.stdout).unwrap();
+    assert!(last.lines().last().unwrap().starts_with("1.0,"), "{last}");
+}
+
+#[test]
+fn bad_output_times_are_refused_before_running() {
+    fails(
+        &[],
+        &[
+            "simulate",
+            "free-hoop",
+            "--integrator",
+            "dop853",
+            "--at",
+            "1,x",
+            "-o",
+            "x.csv",
+        ],
+        &["--at 1,x: `x` is not a number"],
+    );
+    fails(
+        &[],
+        &[
+            "simulate",
+            "free-hoop",
+            "--integrator",
+            "dop853",
+            "--at",
+            "2,1",
+            "-o",
+            "x.csv",
+        ],
+        &["--at 1: comes after 2: times must increase"],
+    );
+    fails(
+        &[],
+        &[
+            "simulate",
+            "free-hoop",
+            "--integrator",
+            "dop853",
+            "--at",
+            "1,1",
+            "-o",
+            "x.csv",
+        ],
+        &["--at 1: given twice"],
+    );
+    fails(
+        &[],
+        &[
+            "simulate",
+            "free-hoop",
+            "--integrator",
+            "dop853",
+            "--at",
+            "0.5,20",
+            "-o",
+            "x.csv",
+        ],
+        &["--at 20: outside [0, t_end = 10]"],
+    );
+    fails(
+        &[],
+        &[
+            "simulate",
+            "free-hoop",
+            "--integrator",
+            "lgvi",
+            "--at",
+            "0.5",
+            "-o",
+            "x.csv",
+        ],
+        &["--at: `lgvi` has no dense output", "dop853"],
+    );
+    fails(
+        &[],
+        &[
+            "simulate",
+            "free-hoop",
+            "--integrator",
+            "dop853",
+            "--output-dt",
+            "-1",
+            "-o",
+            "x.csv",
+        ],
+        &["--output-dt -1: must be positive"],
+    );
+}
+
+#[test]
+fn runaway_runs_are_refused_before_any_step() {
+    // 10^14 steps (the run once wrote 78 GB before it was stopped).
+    fails(
+        &[],
+        &[
+            "simulate",
+            "free-body",
+            "--dt",
+            "1e-9",
+            "--t-end",
+            "1e5",
+            "-o",
+            "x.csv",
+        ],
+        &["about 1.000e14 steps", "--max-steps 1000000000"],
+    );
+    // 10^9 rows of CSV.
+    fails(
+        &[],
+        &[
+            "simulate",
+            "free-body",
+            "--dt",
+            "1e-6",
+            "--t-end",
+            "1e3",
+            "-o",
+            "x.csv",
+        ],
+        &["the CSV would be about", "--max-output 10G", "--every N"],
+    );
+    fails(
+        &[],
+        &[
+            "simulate",
+            "free-body",
+            "--max-output",
+            "lots",
+            "-o",
+            "x.csv",
+        ],
+        &["--max-output lots"],
+    );
+    // The same run with fewer rows or a raised budget is fine (it is not run here: a smaller
+    // horizon shows the budget follows the plan).
+    let dir = TempDir::new().unwrap();
+    succeeds(
+        dir.path(),
+        &[
+            "simulate",
+            "free-body",
+            "--dt",
+            "1e-6",
+            "--t-end",
+            "1e-2",
+            "--max-steps",
+            "20000",
+        ],
+    );
+}
+
+#[test]
+fn an_unresolved_motion_is_reported_not_hidden() {
+    // The T-handle spun at 10^6 rad/s with split4 at 1 ms: the energy drifts by tens of per
+    // cent. The run completes, and says so on stderr and in its provenance file.
+    let dir = TempDir::new().unwrap();
+    let out = succeeds(
+        dir.path(),
+        &[
+            "simulate",
+            "dzhanibekov",
+            "--set",
+            "spin=1e6",
+            "--integrator",
+            "split4",
+            "--t-end",
+            "0.1",
+            "-o",
+            "fast.csv",
+        ],
+    );
+    assert!(
+        stderr(&out).contains("more than --energy-warn"),
+        "{}",
+        stderr(&out)
+    );
+    let record: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("fast.csv.json")).unwrap())
+            .unwrap();
+    assert_eq!(record["energy_warning"], true);
+    // The default (the exact flow) resolves it.
+    let out = succeeds(
+        dir.path(),
+        &[
+            "simulate",
+            "dzhanibekov",
+            "--set",
+            "spin=1e6",
+            "--t-end",
+            "0.1",
+            "-o",
+            "ok.csv",
+        ],
+    );
+    assert!(!stderr(&out).contains("warning"), "{}", stderr(&out));
+}
+
+#[test]
+fn validation_holes_are_closed() {
+    // Angle expressions are strict: `2**pi` was read as 2π, `1e-999` as 0.
+    fails(
+        &[],
+        &[
+            "simulate",
+            "free-hoop",
+            "--set",
+            "alpha0=2**pi",
+            "-o",
+            "x.csv",
+        ],
+        &["`2**pi` is not a number"],
+    );
+    fails(
+        &[],
+        &[
+            "simulate",
+            "free-hoop",
+            "--set",
+            "alpha0=1e-999",
+            "-o",
+            "x.csv",
+        ],
+        &["`1e-999` is not a number"],
+    );
+    // A documented domain that the scene runs: a massless bead has no dynamics on the free
+    // hoop (every integrator failed at t = 0).
+    fails(
+        &[],
+        &["simulate", "free-hoop", "--set", "m=0", "-o", "x.csv"],
+        &["`m`", "positive"],
+    );
+    // A horizon that no step count can reach is refused by the plan, not by every step.
+    fails(
+        &[],
+        &["simulate", "free-body", "--t-end", "1e308", "-o", "x.csv"],
+        &["--dt 0.01", "more than 10^15"],
+    );
+    // A scene file with a 200 kB line: the excerpt shows a window around the error.
+    let long = format!(
+        "scene = \"free-body\"\n[parameters]\nI1 = \"{}\"\n",
+        "x".repeat(200_000)
+    );
+    let err = fails(
+        &[("long.toml", &long)],
+        &["simulate", "long.toml", "-o", "x.csv"],
+        &["long.toml:3"],
+    );
+    assert!(err.len() < 2_000, "{} bytes of error", err.len());
+}
