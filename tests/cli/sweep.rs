@@ -571,3 +571,30 @@ fn integrator_studies_from_the_command_line() {
         assert!(!tmp.path().join("bad").exists(), "{set}");
     }
 }
+
+/// A sweep too large to list is refused by its definition, with the limit (10¹² grid points or
+/// random samples once aborted on an allocation).
+#[test]
+fn an_enormous_sweep_is_refused_by_its_definition() {
+    let tmp = tempfile::tempdir().unwrap();
+    let file = write_sweep(tmp.path(), "small.sweep.toml", &small(1.0, 4));
+    let file = file.to_str().unwrap();
+    let out = tumble_in(
+        tmp.path(),
+        &[
+            "sweep",
+            file,
+            "--set",
+            "axes.omega0.count=1000000000000",
+            "-o",
+            "huge",
+        ],
+    );
+    assert_eq!(out.status.code(), Some(1));
+    assert!(
+        stderr(&out).contains("more than 100000000 points"),
+        "{}",
+        stderr(&out)
+    );
+    assert!(!tmp.path().join("huge").exists());
+}

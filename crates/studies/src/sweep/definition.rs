@@ -235,7 +235,11 @@ impl fmt::Debug for SweepDefinition {
 }
 
 /// Most points a sweep may have.
-pub const MAX_POINTS: u64 = 1 << 40;
+///
+/// The engine lists the points a run still has to compute (8 bytes each), so this bounds that
+/// list to 800 MB; a larger study is a set of sweeps (or shards of one) below it. A grid of
+/// 10¹² points once passed validation and aborted on the allocation.
+pub const MAX_POINTS: u64 = 100_000_000;
 
 impl SweepDefinition {
     /// Reads, overrides and validates the sweep file at `path`.
