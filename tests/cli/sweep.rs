@@ -598,3 +598,16 @@ fn an_enormous_sweep_is_refused_by_its_definition() {
     );
     assert!(!tmp.path().join("huge").exists());
 }
+
+#[test]
+fn a_sweep_manifest_says_how_it_was_made() {
+    let tmp = tempfile::tempdir().unwrap();
+    let file = write_sweep(tmp.path(), "small.sweep.toml", &small(0.2, 2));
+    succeeds(tmp.path(), &["sweep", file.to_str().unwrap(), "-o", "p"]);
+    let p = &manifest(&tmp.path().join("p"))["provenance"];
+    assert_eq!(p["tumble_version"], env!("CARGO_PKG_VERSION"));
+    assert!(p["git_commit"].as_str().is_some_and(|c| !c.is_empty()));
+    assert_eq!(p["command_line"][1], "sweep");
+    assert!(p["date"].as_str().is_some_and(|d| d.ends_with('Z')));
+    assert!(p["host"].as_str().is_some_and(|h| !h.is_empty()));
+}
