@@ -23,6 +23,10 @@
 //! still large, or exhaust `max_iterations`, are an [`Error::NoConvergence`] carrying the
 //! time and the state.
 //!
+//! Dense output ([`DenseOutput`]) is the last step's collocation polynomial
+//! `u(t₀ + θh) = y₀ + Σⱼ ℓⱼ(θ) Zⱼ`, of order `s` (error `O(h^{s+1})` on the step), so events,
+//! output at chosen times and the sweep metrics work with Gauss–Legendre as with DOP853.
+//!
 //! # References
 //! - E. Hairer, R. I. McLachlan, A. Razakarivony, *Achieving Brouwer's law with implicit
 //!   Runge–Kutta methods*, BIT 48 (2008) 231–243.
