@@ -454,19 +454,9 @@ impl<'a> Driver<'a> {
             }
             report.steps += 1;
             if let Some(ev) = events.as_deref_mut() {
-                match ev.after_step(stepper, problem, t_next, state, &mut report, observer) {
-                    AfterStep::Go => {}
-                    AfterStep::Terminated(t_stop) => {
-                        report.t = t_stop;
-                        observer.observe(t_stop, state);
-                        stepper.reset();
-                        return Ok(report);
-                    }
-                    AfterStep::Stopped => {
-                        report.t = t_next;
-                        report.status = Status::Stopped;
-                        return Ok(report);
-                    }
+                let after = ev.after_step(stepper, problem, t_next, state, &mut report, observer);
+                if ends_run(after, t_next, &mut report, stepper, state, observer) {
+                    return Ok(report);
                 }
             }
             t = t_next;
@@ -571,19 +561,10 @@ impl<'a> Driver<'a> {
                     });
                 }
                 report.steps += 1;
-                match tracker.after_step(stepper, problem, t_next, state, &mut report, observer) {
-                    AfterStep::Go => {}
-                    AfterStep::Terminated(t_stop) => {
-                        report.t = t_stop;
-                        observer.observe(t_stop, state);
-                        stepper.reset();
-                        return Ok(report);
-                    }
-                    AfterStep::Stopped => {
-                        report.t = t_next;
-                        report.status = Status::Stopped;
-                        return Ok(report);
-                    }
+                let after =
+                    tracker.after_step(stepper, problem, t_next, state, &mut report, observer);
+                if ends_run(after, t_next, &mut report, stepper, state, observer) {
+                    return Ok(report);
                 }
                 t = t_next;
                 report.t = t;
@@ -604,5 +585,31 @@ impl<'a> Driver<'a> {
             }
         }
         Ok(report)
+    }
+}
+
+/// Applies what the events and outputs of a step to `t_next` decided: `true` when the run ends
+/// there (a terminal event, with the state at the event observed; or an observer's stop).
+fn ends_run<P: ?Sized, St: Stepper<P>, O: Observer<St::State>>(
+    after: AfterStep,
+    t_next: f64,
+    report: &mut Report<St::State>,
+    stepper: &mut St,
+    state: &St::State,
+    observer: &mut O,
+) -> bool {
+    match after {
+        AfterStep::Go => false,
+        AfterStep::Terminated(t_stop) => {
+            report.t = t_stop;
+            observer.observe(t_stop, state);
+            stepper.reset();
+            true
+        }
+        AfterStep::Stopped => {
+            report.t = t_next;
+            report.status = Status::Stopped;
+            true
+        }
     }
 }

@@ -10,18 +10,26 @@ use tumble_integrators::{
 
 type V2 = SVector<f64, 2>;
 
-/// Local interpolation error at θ = 1/3 of one step from the exact state: O(h^(q+1)).
-fn dense_error<const S: usize>(method: ExplicitRungeKutta<S>, h: f64) -> f64 {
+/// Local interpolation error at θ = 1/3 of one step of `stepper` from the exact state:
+/// `O(h^(q+1))` for a dense output of order `q`.
+fn dense_error_of<St>(mut stepper: St, h: f64) -> f64
+where
+    St: DenseOutput<HamiltonianOde<HarmonicOscillator>, State = V2>,
+{
     let problem = HamiltonianOde(HarmonicOscillator);
     let t0 = 0.7;
     let mut y = V2::from(HarmonicOscillator::exact(1.0, 0.0, t0));
-    let mut st = method.stepper(&y);
-    st.step(&problem, t0, &mut y, h).unwrap();
+    stepper.step(&problem, t0, &mut y, h).unwrap();
     let mut out = V2::zeros();
     let t = t0 + h / 3.0;
-    st.interpolate(&problem, t, &mut out);
+    stepper.interpolate(&problem, t, &mut out);
     let exact = HarmonicOscillator::exact(1.0, 0.0, t);
     (out[0] - exact[0]).abs().max((out[1] - exact[1]).abs())
+}
+
+fn dense_error<const S: usize>(method: ExplicitRungeKutta<S>, h: f64) -> f64 {
+    let y = V2::zeros();
+    dense_error_of(method.stepper(&y), h)
 }
 
 #[test]
@@ -148,16 +156,8 @@ fn events_work_with_fixed_steps_too() {
 /// Local error at θ = 1/3 of the Gauss–Legendre collocation polynomial of one step from the
 /// exact state.
 fn gauss_dense_error<const S: usize>(method: tumble_integrators::Gauss<S>, h: f64) -> f64 {
-    let problem = HamiltonianOde(HarmonicOscillator);
-    let t0 = 0.7;
-    let mut y = V2::from(HarmonicOscillator::exact(1.0, 0.0, t0));
-    let mut st = method.stepper(&y);
-    st.step(&problem, t0, &mut y, h).unwrap();
-    let mut out = V2::zeros();
-    let t = t0 + h / 3.0;
-    st.interpolate(&problem, t, &mut out);
-    let exact = HarmonicOscillator::exact(1.0, 0.0, t);
-    (out[0] - exact[0]).abs().max((out[1] - exact[1]).abs())
+    let y = V2::zeros();
+    dense_error_of(method.stepper(&y), h)
 }
 
 /// The collocation polynomial of an `s`-stage Gauss method interpolates with error
