@@ -73,7 +73,7 @@ enum SamplingJson {
 #[derive(Serialize)]
 struct DefinitionJson {
     axes: Vec<AxisJson>,
-    metrics: Vec<&'static str>,
+    metrics: Vec<String>,
     origin: String,
     parameters: BTreeMap<String, f64>,
     points: u64,
@@ -149,7 +149,7 @@ struct SelfCheckJson {
     converged: bool,
     dt: Option<f64>,
     largest_change: f64,
-    metrics: BTreeMap<&'static str, MetricChangeJson>,
+    metrics: BTreeMap<String, MetricChangeJson>,
     points: Vec<u64>,
     status_changed: Vec<u64>,
     tol: Option<f64>,

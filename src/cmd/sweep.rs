@@ -555,7 +555,7 @@ fn quiet_point_panics<T>(f: impl FnOnce() -> T) -> T {
 /// The files a sweep writes into its folder (besides its journal), checked before it runs.
 fn folder_files(def: &SweepDefinition) -> Vec<String> {
     let mut names = vec!["results.csv".to_string(), "manifest.json".to_string()];
-    if let Some(&metric) = def.metrics.first() {
+    if let Some(metric) = def.metrics.first() {
         let stem = plot::sweep::plot_stem(metric);
         for kind in ["map", "slices"] {
             for ext in ["png", "svg"] {

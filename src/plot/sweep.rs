@@ -18,7 +18,7 @@ pub(crate) fn axis_label(name: &str, unit: &str) -> String {
     }
 }
 
-fn metric_label(m: Metric) -> String {
+fn metric_label(m: &Metric) -> String {
     if m.unit().is_empty() {
         m.description().to_string()
     } else {
@@ -26,9 +26,23 @@ fn metric_label(m: Metric) -> String {
     }
 }
 
-/// The plot files' stem for metric `m`: `tilt` for the tilt metrics, else the metric's name.
-pub(crate) fn plot_stem(m: Metric) -> &'static str {
-    if m.needs_tilt() { "tilt" } else { m.name() }
+/// The plot files' stem for metric `m`: `tilt` for the tilt metrics, else the metric's name
+/// with every character other than a letter, digit, `.`, `-` or `_` written `_`
+/// (`max:alpha` → `max_alpha`, `first_time:tilt>0.5` → `first_time_tilt_0.5`).
+pub(crate) fn plot_stem(m: &Metric) -> String {
+    if m.needs_tilt() {
+        return "tilt".to_string();
+    }
+    m.name()
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || matches!(c, '.' | '-' | '_') {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect()
 }
 
 /// The fixed parameters, for subtitles.
@@ -58,7 +72,7 @@ pub(crate) fn draw_plots(
     dir: &Path,
     rows: &[PointRow],
 ) -> Result<Vec<String>> {
-    let Some(&metric) = def.metrics.first() else {
+    let Some(metric) = def.metrics.first() else {
         return Ok(Vec::new());
     };
     if def.sampling != Sampling::Grid || def.axes.len() > 2 {

@@ -25,7 +25,7 @@ mod events;
 use events::{AfterStep, EventHook, EventTracker, NoEvents};
 
 use crate::error::{Error, check_step};
-use crate::state::{State, VectorState};
+use crate::state::State;
 use crate::stepper::{AdaptiveStepper, DenseOutput, Stepper, Tolerances};
 
 /// What an observer asks the driver to do next.
@@ -387,7 +387,6 @@ impl<'a> Driver<'a> {
     ) -> Result<Report<St::State>, Error>
     where
         St: DenseOutput<P>,
-        St::State: VectorState,
         O: Observer<St::State>,
     {
         let mut tracker = EventTracker::new(events, self.outputs);
@@ -455,7 +454,7 @@ impl<'a> Driver<'a> {
             report.steps += 1;
             if let Some(ev) = events.as_deref_mut() {
                 let after = ev.after_step(stepper, problem, t_next, state, &mut report, observer);
-                if ends_run(after, t_next, &mut report, stepper, state, observer) {
+                if ends_run(after, t_next, &mut report, stepper, state, observer)? {
                     return Ok(report);
                 }
             }
@@ -488,7 +487,6 @@ impl<'a> Driver<'a> {
     ) -> Result<Report<St::State>, Error>
     where
         St: AdaptiveStepper<P> + DenseOutput<P>,
-        St::State: VectorState,
         O: Observer<St::State>,
     {
         let tol = Tolerances::new(tolerances.rtol, tolerances.atol)?;
@@ -563,7 +561,7 @@ impl<'a> Driver<'a> {
                 report.steps += 1;
                 let after =
                     tracker.after_step(stepper, problem, t_next, state, &mut report, observer);
-                if ends_run(after, t_next, &mut report, stepper, state, observer) {
+                if ends_run(after, t_next, &mut report, stepper, state, observer)? {
                     return Ok(report);
                 }
                 t = t_next;
@@ -597,8 +595,8 @@ fn ends_run<P: ?Sized, St: Stepper<P>, O: Observer<St::State>>(
     stepper: &mut St,
     state: &St::State,
     observer: &mut O,
-) -> bool {
-    match after {
+) -> Result<bool, Error> {
+    Ok(match after {
         AfterStep::Go => false,
         AfterStep::Terminated(t_stop) => {
             report.t = t_stop;
@@ -611,5 +609,6 @@ fn ends_run<P: ?Sized, St: Stepper<P>, O: Observer<St::State>>(
             report.status = Status::Stopped;
             true
         }
-    }
+        AfterStep::Failed(e) => return Err(e),
+    })
 }

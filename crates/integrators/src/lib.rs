@@ -72,7 +72,9 @@ pub mod explicit;
 pub mod gauss;
 pub mod problem;
 pub mod registry;
+pub mod restep;
 pub mod rigid;
+pub mod roots;
 pub mod special;
 pub mod state;
 pub mod stepper;
@@ -96,6 +98,7 @@ pub use problem::{
     SplitOde,
 };
 pub use registry::{Family, MethodInfo, Order, ProblemKind, Properties};
+pub use restep::Restepped;
 pub use state::{State, VectorState};
 pub use stepper::{AdaptiveStepper, DenseOutput, Stepper, Tolerances};
 pub use symplectic::{

@@ -161,7 +161,10 @@ pub struct Properties {
     pub symmetric: bool,
     /// Has an error estimate and adaptive step-size control.
     pub adaptive: bool,
-    /// Has a dense output (continuous extension) used for events.
+    /// Has a dense output (continuous extension) for events and output at chosen times:
+    /// the method's own interpolant (explicit Runge–Kutta, Gauss–Legendre), or for methods
+    /// without one a partial step of the method itself ([`crate::restep::Restepped`], of the
+    /// method's order, on the group for Lie-group methods).
     pub dense_output: bool,
     /// Stays on a Lie group.
     pub lie_group: bool,
@@ -208,7 +211,7 @@ const SYMPLECTIC_EXPLICIT: Properties = Properties {
     symplectic: true,
     symmetric: true,
     adaptive: false,
-    dense_output: false,
+    dense_output: true,
     lie_group: false,
     exact: false,
 };
@@ -229,7 +232,6 @@ const LIE_VARIATIONAL: Properties = Properties {
 };
 /// Explicit, neither symplectic nor symmetric, on the group (RKMK, Crouch–Grossman).
 const LIE_EXPLICIT: Properties = Properties {
-    dense_output: false,
     lie_group: true,
     ..EXPLICIT
 };

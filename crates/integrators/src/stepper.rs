@@ -82,6 +82,14 @@ pub trait DenseOutput<P: ?Sized>: Stepper<P> {
 
     /// Order of the interpolant (its error is `O(h^(order+1))` locally).
     fn dense_order(&self) -> u32;
+
+    /// A failure of an interpolation since the last call, if any. Interpolants that take a
+    /// partial step of the method ([`crate::restep::Restepped`]) can fail as a step can; the
+    /// driver ends the run with the error. The default (interpolants that cannot fail) is
+    /// `None`.
+    fn take_failure(&mut self) -> Option<crate::error::Error> {
+        None
+    }
 }
 
 /// Relative and absolute tolerances of adaptive methods: component `i` is weighted by

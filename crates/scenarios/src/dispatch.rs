@@ -24,8 +24,8 @@ use tumble_integrators::rigid::{
     RigidBodyState, cg3, rkmk4, split4, split6, split8,
 };
 use tumble_integrators::{
-    Event, ExplicitRungeKutta, Flow, Observer, Ode, ProblemKind, Tolerances, gauss2, gauss4,
-    gauss6, gauss8, gauss10, gauss12,
+    Event, ExplicitRungeKutta, Observer, Ode, Order, ProblemKind, Restepped, Stepper, Tolerances,
+    gauss2, gauss4, gauss6, gauss8, gauss10, gauss12,
 };
 
 use crate::error::SceneError;
@@ -157,30 +157,16 @@ where
 {
     let h = fixed_step(plan)?;
     let driver = plan.driver()?;
+    let dense = plan.times.is_some() || observer.wants_dense_steps();
+    let order = interpolation_order(plan);
     macro_rules! on {
         ($problem:expr, $stepper:expr) => {{
             let mut stepper = $stepper;
-            let report = driver.run_fixed(&mut stepper, $problem, state, h, observer)?;
-            (report.t, report.steps)
-        }};
-    }
-    macro_rules! group {
-        ($stepper:expr) => {{
-            let mut stepper = $stepper;
-            let mut g = GroupState {
-                rotation: state.rotation,
-                vector: state.momentum,
-            };
-            let report = driver.run_fixed(
-                &mut stepper,
-                &EulerEquations(*body),
-                &mut g,
-                h,
-                &mut GroupRows(observer),
-            )?;
-            *state = RigidBodyState {
-                rotation: g.rotation,
-                momentum: g.vector,
+            let report = if dense {
+                let mut stepper = Restepped::new(stepper, order);
+                driver.run_fixed_with_events(&mut stepper, $problem, state, h, &mut [], observer)?
+            } else {
+                driver.run_fixed(&mut stepper, $problem, state, h, observer)?
             };
             (report.t, report.steps)
         }};
@@ -194,8 +180,12 @@ where
         (ProblemKind::RigidBody, "split-exact2", _) => on!(body, ExactSplitting::new()),
         (ProblemKind::FreeRigidBody, "dmv", Some(free)) => on!(free, Dmv::new()),
         (ProblemKind::FreeRigidBody, "exact", Some(free)) => on!(free, ExactStepper::new()),
-        (ProblemKind::LieVectorField, "rkmk4", _) => group!(rkmk4::<3>()),
-        (ProblemKind::LieVectorField, "cg3", _) => group!(cg3::<3>()),
+        (ProblemKind::LieVectorField, "rkmk4", _) => {
+            on!(&EulerEquations(*body), OnRigidBody(rkmk4::<3>()))
+        }
+        (ProblemKind::LieVectorField, "cg3", _) => {
+            on!(&EulerEquations(*body), OnRigidBody(cg3::<3>()))
+        }
         (kind, _, _) => return Err(no_stepper(plan, kind.name())),
     };
     Ok(Outcome {
@@ -225,7 +215,12 @@ where
     let report = match (plan.kind, plan.integrator()) {
         (ProblemKind::CoupledRigidBody, "lgvi") => {
             let mut stepper = CoupledLgvi::<N>::new();
-            driver.run_fixed(&mut stepper, model, state, h, observer)?
+            if plan.times.is_some() || observer.wants_dense_steps() {
+                let mut stepper = Restepped::new(stepper, interpolation_order(plan));
+                driver.run_fixed_with_events(&mut stepper, model, state, h, &mut [], observer)?
+            } else {
+                driver.run_fixed(&mut stepper, model, state, h, observer)?
+            }
         }
         (kind, _) => return Err(no_stepper(plan, kind.name())),
     };
@@ -236,18 +231,44 @@ where
     })
 }
 
-/// Adapts an observer of rigid-body states to the Lie-group methods' `GroupState<3>`.
-struct GroupRows<'o, O>(&'o mut O);
+/// The order of a re-stepped dense output ([`Restepped`]): the method's own (an exact flow
+/// interpolates exactly).
+fn interpolation_order(plan: &RunPlan) -> u32 {
+    match plan.method.order {
+        Order::Finite(p) => p,
+        Order::Exact => u32::MAX,
+    }
+}
 
-impl<O: Observer<RigidBodyState>> Observer<GroupState<3>> for GroupRows<'_, O> {
-    fn observe(&mut self, t: f64, state: &GroupState<3>) -> Flow {
-        self.0.observe(
-            t,
-            &RigidBodyState {
-                rotation: state.rotation,
-                momentum: state.vector,
-            },
-        )
+/// A Lie-group method on `GroupState<3>` stepping a [`RigidBodyState`] (the same numbers: the
+/// rotation and the body momentum).
+#[derive(Clone)]
+struct OnRigidBody<St>(St);
+
+impl<P: ?Sized, St: Stepper<P, State = GroupState<3>>> Stepper<P> for OnRigidBody<St> {
+    type State = RigidBodyState;
+
+    fn step(
+        &mut self,
+        problem: &P,
+        t: f64,
+        state: &mut RigidBodyState,
+        h: f64,
+    ) -> Result<(), tumble_integrators::Error> {
+        let mut g = GroupState {
+            rotation: state.rotation,
+            vector: state.momentum,
+        };
+        let stepped = self.0.step(problem, t, &mut g, h);
+        *state = RigidBodyState {
+            rotation: g.rotation,
+            momentum: g.vector,
+        };
+        stepped
+    }
+
+    fn reset(&mut self) {
+        self.0.reset();
     }
 }
 

@@ -2,7 +2,8 @@
 //! step's continuous extension handed to observers that ask for it.
 
 use super::{Action, DenseStep, Direction, Event, EventRecord, Flow, Observer, Report, Status};
-use crate::state::VectorState;
+use crate::error::Error;
+use crate::state::State;
 use crate::stepper::{DenseOutput, Stepper};
 
 /// [`DenseStep`] over a stepper with dense output.
@@ -10,7 +11,10 @@ pub(super) struct DenseView<'s, P: ?Sized, St: Stepper<P>> {
     stepper: &'s mut St,
     problem: &'s P,
     t0: f64,
+    /// End of the span: the step's end, or a terminal event inside the step.
     t1: f64,
+    /// The step's end, where `end` is the state.
+    step_end: f64,
     end: &'s St::State,
     scratch: &'s mut St::State,
 }
@@ -21,7 +25,7 @@ impl<P: ?Sized, St: DenseOutput<P>> DenseStep<St::State> for DenseView<'_, P, St
     }
 
     fn state_at(&mut self, t: f64) -> &St::State {
-        if t == self.t1 {
+        if t == self.step_end {
             return self.end;
         }
         self.stepper.interpolate(self.problem, t, self.scratch);
@@ -37,6 +41,8 @@ pub(super) enum AfterStep {
     Terminated(f64),
     /// An observer stopped the run at an output.
     Stopped,
+    /// An interpolation failed ([`DenseOutput::take_failure`]).
+    Failed(Error),
 }
 
 /// Event and output handling inside the loops (a trait so the fixed loop can run without
@@ -99,7 +105,7 @@ pub(super) struct EventTracker<'e, 'f, 'o, S> {
     dense: bool,
 }
 
-impl<'e, 'f, 'o, S: VectorState> EventTracker<'e, 'f, 'o, S> {
+impl<'e, 'f, 'o, S: State> EventTracker<'e, 'f, 'o, S> {
     pub(super) fn new(events: &'e mut [Event<'f, S>], outputs: &'o [f64]) -> Self {
         let n = events.len();
         Self {
@@ -126,7 +132,6 @@ fn crosses(direction: Direction, g0: f64, g1: f64) -> bool {
 impl<P: ?Sized, St> EventHook<P, St> for EventTracker<'_, '_, '_, St::State>
 where
     St: DenseOutput<P>,
-    St::State: VectorState,
 {
     fn start<O: Observer<St::State>>(
         &mut self,
@@ -140,7 +145,7 @@ where
         }
         self.dense = observer.wants_dense_steps();
         if !self.events.is_empty() || !self.outputs.is_empty() || self.dense {
-            self.scratch = Some(state.zeros_like());
+            self.scratch = Some(state.clone());
         }
         while self.outputs.get(self.next_output) == Some(&t) {
             self.next_output += 1;
@@ -158,6 +163,25 @@ where
         t1: f64,
         state: &mut St::State,
         report: &mut Report<St::State>,
+        observer: &mut O,
+    ) -> AfterStep {
+        let after = self.deliver(stepper, problem, t1, state, report, observer);
+        match stepper.take_failure() {
+            Some(e) => AfterStep::Failed(e),
+            None => after,
+        }
+    }
+}
+
+impl<S: State> EventTracker<'_, '_, '_, S> {
+    /// Events, dense steps and outputs of the step that ended at `t1`.
+    fn deliver<P: ?Sized, St: DenseOutput<P, State = S>, O: Observer<S>>(
+        &mut self,
+        stepper: &mut St,
+        problem: &P,
+        t1: f64,
+        state: &mut S,
+        report: &mut Report<S>,
         observer: &mut O,
     ) -> AfterStep {
         if self.events.is_empty() && self.outputs.is_empty() && !self.dense {
@@ -178,19 +202,6 @@ where
             self.g_prev[i] = g1;
         }
         self.t_prev = t1;
-        if self.dense {
-            let mut view = DenseView {
-                stepper: &mut *stepper,
-                problem,
-                t0,
-                t1,
-                end: &*state,
-                scratch: &mut *scratch,
-            };
-            if observer.dense_step(&mut view) == Flow::Stop {
-                return AfterStep::Stopped;
-            }
-        }
         self.found.sort_by(|a, b| a.0.total_cmp(&b.0));
         // The run ends at the first terminal event, if any: outputs after it are not reached.
         let end = self
@@ -198,6 +209,20 @@ where
             .iter()
             .find(|&&(_, i)| self.events[i].action == Action::Terminate)
             .map_or(t1, |&(root, _)| root);
+        if self.dense {
+            let mut view = DenseView {
+                stepper: &mut *stepper,
+                problem,
+                t0,
+                t1: end,
+                step_end: t1,
+                end: &*state,
+                scratch: &mut *scratch,
+            };
+            if observer.dense_step(&mut view) == Flow::Stop {
+                return AfterStep::Stopped;
+            }
+        }
         while let Some(&t) = self.outputs.get(self.next_output) {
             if t > end {
                 break;
@@ -221,7 +246,7 @@ where
                 state: scratch.clone(),
             });
             if self.events[i].action == Action::Terminate {
-                state.as_mut_slice().copy_from_slice(scratch.as_slice());
+                state.copy_from(scratch);
                 report.status = Status::Terminated(i);
                 return AfterStep::Terminated(root);
             }
@@ -230,8 +255,8 @@ where
     }
 }
 
-/// Root of `g(t, u(t))` on `[t0, t1]` (sign change given) by the Illinois method on the
-/// dense output `u`.
+/// Root of `g(t, u(t))` on `[t0, t1]` (sign change given) by the Illinois method
+/// ([`crate::roots::illinois`]) on the dense output `u`.
 fn locate<P: ?Sized, St>(
     stepper: &mut St,
     problem: &P,
@@ -245,42 +270,14 @@ fn locate<P: ?Sized, St>(
 where
     St: DenseOutput<P>,
 {
-    if g1 == 0.0 {
-        return t1;
-    }
-    let (mut a, mut ga, mut b, mut gb) = (t0, g0, t1, g1);
-    let mut side = 0i8;
-    for _ in 0..200 {
-        if (b - a).abs() <= 4.0 * f64::EPSILON * a.abs().max(b.abs()).max(1e-300) {
-            break;
-        }
-        let mut c = (a * gb - b * ga) / (gb - ga);
-        if !(c > a.min(b) && c < a.max(b)) {
-            c = 0.5 * (a + b);
-        }
-        stepper.interpolate(problem, c, scratch);
-        let gc = g(c, scratch);
-        if gc == 0.0 {
-            return c;
-        }
-        if (gc < 0.0) == (gb < 0.0) {
-            // c replaces b; a is retained
-            b = c;
-            gb = gc;
-            if side == -1 {
-                ga *= 0.5;
-            }
-            side = -1;
-        } else {
-            a = c;
-            ga = gc;
-            if side == 1 {
-                gb *= 0.5;
-            }
-            side = 1;
-        }
-    }
-    // `a` keeps the sign of g0 and `b` that of g1: `b` is the first time past the crossing.
-    let _ = ga;
-    b
+    crate::roots::illinois(
+        |c| {
+            stepper.interpolate(problem, c, scratch);
+            g(c, scratch)
+        },
+        t0,
+        g0,
+        t1,
+        g1,
+    )
 }

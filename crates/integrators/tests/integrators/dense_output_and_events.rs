@@ -2,11 +2,16 @@
 //! pendulum's angle (k = 0.999, crossings at t = 2jK(k²)) to 1e-10 in time.
 
 use nalgebra::SVector;
+use tumble_integrators::rigid::{
+    EulerEquations, ExactStepper, FreeRigidBody, GroupState, Lgvi, RigidBodyState, rkmk4, split4,
+};
 use tumble_integrators::verification::{HarmonicOscillator, OrderStudy, Pendulum};
 use tumble_integrators::{
-    Action, DenseOutput, Direction, Driver, Event, ExplicitRungeKutta, HamiltonianOde, NoObserver,
-    Status, Stepper, Tolerances, special::ellip_k,
+    Action, DenseOutput, Direction, Driver, Event, ExplicitRungeKutta, Flow, HamiltonianOde,
+    NoObserver, Observer, Restepped, Status, Stepper, Tolerances, special::ellip_k,
 };
+
+use crate::rigid_support::{asymmetric_body, exact_state, initial_state, state_error};
 
 type V2 = SVector<f64, 2>;
 
@@ -296,4 +301,126 @@ fn output_times_come_from_dense_output_and_leave_the_steps_alone() {
         refused.is_err(),
         "run_fixed has no dense output to take output times from"
     );
+}
+
+/// Interpolation error at θ = 1/3 of one step of `stepper` (wrapped in [`Restepped`]) from a
+/// general state of the asymmetric free body, against the exact elliptic-function flow, and the
+/// interpolated rotation's distance from SO(3).
+fn restepped_error<St>(stepper: St, order: u32, h: f64) -> (f64, f64)
+where
+    St: Stepper<FreeRigidBody, State = RigidBodyState> + Clone,
+{
+    let body = asymmetric_body();
+    let s0 = initial_state();
+    let t0 = 0.4;
+    let mut s = exact_state(&body, &s0, t0);
+    let mut dense = Restepped::new(stepper, order);
+    dense.step(&body, t0, &mut s, h).unwrap();
+    let t = t0 + h / 3.0;
+    let mut out = s;
+    dense.interpolate(&body, t, &mut out);
+    let exact = exact_state(&body, &s0, t);
+    (
+        state_error(&out, &exact, s0.momentum.norm()),
+        out.orthogonality_defect(),
+    )
+}
+
+#[test]
+fn restepped_dense_output_has_the_method_order_and_stays_on_so3() {
+    fn check(name: &str, order: u32, n0: f64, mut error: impl FnMut(f64) -> (f64, f64)) {
+        let mut worst_defect = 0.0_f64;
+        let fit = OrderStudy::new(n0, 5)
+            .run(|h| {
+                let (e, defect) = error(h);
+                worst_defect = worst_defect.max(defect);
+                Ok(e)
+            })
+            .unwrap();
+        eprintln!(
+            "re-stepped {name}: local slope {:.3} (order {order} + 1), |RᵀR − I| ≤ {worst_defect:.1e}",
+            fit.slope
+        );
+        fit.check(f64::from(order) + 1.0, 0.3)
+            .unwrap_or_else(|m| panic!("{name}: {m}"));
+        assert!(
+            worst_defect <= 1e-14,
+            "{name} leaves SO(3): {worst_defect:e}"
+        );
+    }
+    check("lgvi", 2, 0.2, |h| restepped_error(Lgvi::new(), 2, h));
+    check("split4", 4, 0.4, |h| restepped_error(split4(), 4, h));
+    check("rkmk4", 4, 0.4, |h| {
+        let body = asymmetric_body();
+        let field = EulerEquations(body);
+        let s0 = initial_state();
+        let t0 = 0.4;
+        let mut g = GroupState::<3>::from(exact_state(&body, &s0, t0));
+        let mut dense = Restepped::new(rkmk4::<3>(), 4);
+        dense.step(&field, t0, &mut g, h).unwrap();
+        let t = t0 + h / 3.0;
+        let mut out = g;
+        dense.interpolate(&field, t, &mut out);
+        let out = RigidBodyState::from(out);
+        let exact = exact_state(&body, &s0, t);
+        (
+            state_error(&out, &exact, s0.momentum.norm()),
+            out.orthogonality_defect(),
+        )
+    });
+    // The exact flow interpolates exactly.
+    for h in [0.5, 0.05] {
+        let (e, defect) = restepped_error(ExactStepper::new(), u32::MAX, h);
+        eprintln!("re-stepped exact, h = {h}: error {e:.1e}");
+        assert!(e <= 1e-14 && defect <= 1e-14, "exact: {e:e}, {defect:e}");
+    }
+}
+
+#[test]
+fn restepped_output_times_leave_the_lgvi_steps_alone() {
+    let body = asymmetric_body();
+    let s0 = initial_state();
+    let times: Vec<f64> = (0..=40).map(|k| 0.25 * f64::from(k)).collect();
+    let driver = Driver::new(0.0, 10.0).unwrap();
+    let mut plain = s0;
+    driver
+        .run_fixed(&mut Lgvi::new(), &body, &mut plain, 0.003, &mut NoObserver)
+        .unwrap();
+    let mut rows = Vec::new();
+    let mut observer = OutputRows(&mut rows);
+    let mut dense = s0;
+    driver
+        .output_at(&times)
+        .unwrap()
+        .run_fixed_with_events(
+            &mut Restepped::new(Lgvi::new(), 2),
+            &body,
+            &mut dense,
+            0.003,
+            &mut [],
+            &mut observer,
+        )
+        .unwrap();
+    assert_eq!(plain, dense, "output times changed the step sequence");
+    assert_eq!(rows.len(), times.len());
+    // Every output is the LGVI's own trajectory there: second order in h against the exact
+    // flow, like the steps (the LGVI's error at t = 10 with h = 0.003 is a few 1e-5).
+    let step_error = state_error(&plain, &exact_state(&body, &s0, 10.0), 1.0);
+    for (t, s) in &rows {
+        let e = state_error(s, &exact_state(&body, &s0, *t), 1.0);
+        assert!(
+            e <= 2.0 * step_error.max(1e-6),
+            "t = {t}: {e:e} (step error {step_error:e})"
+        );
+        assert!(s.orthogonality_defect() <= 1e-13);
+    }
+}
+
+struct OutputRows<'a>(&'a mut Vec<(f64, RigidBodyState)>);
+
+impl Observer<RigidBodyState> for OutputRows<'_> {
+    fn output(&mut self, t: f64, state: &RigidBodyState) -> Flow {
+        self.0.push((t, *state));
+        Flow::Continue
+    }
 }

@@ -178,8 +178,8 @@ pub fn self_check(
     let mut changes: Vec<MetricChange> = def
         .metrics
         .iter()
-        .map(|&metric| MetricChange {
-            metric,
+        .map(|metric| MetricChange {
+            metric: metric.clone(),
             max_change: 0.0,
             index: None,
             undefined_in_one: 0,

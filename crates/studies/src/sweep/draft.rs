@@ -512,16 +512,11 @@ impl Draft {
                 }
                 let mut metrics: Vec<Metric> = Vec::new();
                 for name in &record.value {
-                    let Some(m) = Metric::from_name(&name.value) else {
-                        return Err(SweepFileError::Metric {
+                    let m =
+                        Metric::parse(&name.value).map_err(|reason| SweepFileError::Metric {
                             at: name.at.clone(),
-                            reason: format!(
-                                "unknown metric `{}`; metrics: {}",
-                                name.value,
-                                Metric::ALL.map(Metric::name).join(", ")
-                            ),
-                        });
-                    };
+                            reason,
+                        })?;
                     if let Some(why) = m.not_applicable(scene) {
                         return Err(SweepFileError::Metric {
                             at: name.at.clone(),

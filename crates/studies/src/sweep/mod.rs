@@ -71,6 +71,7 @@
 //! `AtomicBool`.
 
 pub mod check;
+mod column;
 pub mod definition;
 mod draft;
 mod engine;
@@ -89,7 +90,7 @@ pub use definition::{Axis, AxisValues, Sampling, Spacing, SweepDefinition};
 pub use engine::{Progress, RunConfig, SweepReport, merge, run, run_point};
 pub use file_error::{Origin, SweepFileError};
 pub use journal::{DEFINITION, JOURNAL, PointRow, RESULTS, Status, results_csv};
-pub use metrics::Metric;
+pub use metrics::{ColumnOp, Metric};
 pub use overrides::{Override, OverrideValue};
 
 /// The built-in hoop-tilt map (`tumble sweep` without a file): how far the free hoop tilts

@@ -670,7 +670,7 @@ fn tilt_map_step_halving(indices: &[u64]) -> (f64, u64) {
     let tilts = [Metric::MaxTilt, Metric::FinalTilt].map(|m| {
         def.metrics
             .iter()
-            .position(|&x| x == m)
+            .position(|x| *x == m)
             .expect("the map records max_tilt and final_tilt")
     });
     indices
