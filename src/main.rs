@@ -68,6 +68,8 @@ fn main() -> ExitCode {
                 ExitCode::from(cmd::sweep::PointsFailed::EXIT_CODE)
             } else if e.is::<cmd::sweep::NotConverged>() {
                 ExitCode::from(cmd::sweep::NotConverged::EXIT_CODE)
+            } else if e.is::<cmd::sweep_diff::Differ>() {
+                ExitCode::from(cmd::sweep_diff::Differ::EXIT_CODE)
             } else {
                 ExitCode::FAILURE
             }

@@ -7,4 +7,5 @@ pub mod kinematics;
 pub mod scenes;
 pub mod simulate;
 pub mod sweep;
+pub mod sweep_diff;
 pub mod work_precision;

@@ -94,6 +94,8 @@ pub enum Command {
     /// Join the output folders of the N shards of a sweep into the folder an unsharded run
     /// writes
     Merge(MergeArgs),
+    /// Compare two sweeps of the same grid: the largest difference of each metric, and where
+    Diff(super::sweep_diff::DiffArgs),
 }
 
 /// Flags of `tumble sweep merge`.
@@ -262,8 +264,10 @@ fn default_output(file: Option<&Path>) -> PathBuf {
 /// An invalid file, override or flag (before any point runs), a folder that holds another
 /// sweep, an unwritable output; [`PointsFailed`] when the sweep finished with failed points.
 pub fn run(args: &Args) -> Result<()> {
-    if let Some(Command::Merge(m)) = &args.command {
-        return merge(m);
+    match &args.command {
+        Some(Command::Merge(m)) => return merge(m),
+        Some(Command::Diff(d)) => return super::sweep_diff::run(d),
+        None => {}
     }
     // Stage one: everything validated.
     let overrides = args

@@ -8,4 +8,5 @@ mod simulate;
 mod special_files;
 mod support;
 mod sweep;
+mod sweep_diff;
 mod work_precision;

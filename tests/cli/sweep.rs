@@ -16,7 +16,7 @@ fn read(path: &Path) -> String {
 }
 
 /// A small sweep of the free hoop: 4 spins × 2 bead angles over `t_end`.
-fn small(t_end: f64, spins: usize) -> String {
+pub(crate) fn small(t_end: f64, spins: usize) -> String {
     format!(
         r#"# A small test sweep.
 scene = "free-hoop"
@@ -46,7 +46,7 @@ tilt_threshold = 0.05
     )
 }
 
-fn write_sweep(dir: &Path, name: &str, text: &str) -> PathBuf {
+pub(crate) fn write_sweep(dir: &Path, name: &str, text: &str) -> PathBuf {
     let path = dir.join(name);
     std::fs::write(&path, text).unwrap();
     path

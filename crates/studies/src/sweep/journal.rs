@@ -153,6 +153,43 @@ pub fn results_csv(def: &SweepDefinition, rows: &[PointRow]) -> Result<Vec<u8>, 
     w.into_inner().map_err(|e| SweepError::Csv(e.to_string()))
 }
 
+/// The rows of a `results.csv` text, checked against the definition (the header, every
+/// field, the axis values of every index).
+///
+/// # Errors
+/// The 1-based line and what is wrong with it.
+pub(crate) fn parse_results(
+    def: &SweepDefinition,
+    text: &str,
+) -> Result<Vec<PointRow>, (usize, String)> {
+    let mut reader = csv::ReaderBuilder::new()
+        .has_headers(true)
+        .from_reader(text.as_bytes());
+    let header: Vec<String> = reader
+        .headers()
+        .map_err(|e| (1, e.to_string()))?
+        .iter()
+        .map(str::to_string)
+        .collect();
+    if header != def.columns() {
+        return Err((
+            1,
+            format!(
+                "the header is [{}], the sweep's columns are [{}]",
+                header.join(","),
+                def.columns().join(",")
+            ),
+        ));
+    }
+    let mut rows = Vec::new();
+    for (k, record) in reader.records().enumerate() {
+        let line = k + 2;
+        let record = record.map_err(|e| (line, e.to_string()))?;
+        rows.push(parse_row(def, &record).map_err(|reason| (line, reason))?);
+    }
+    Ok(rows)
+}
+
 /// Parses one journal record into a row, checking it against the definition.
 fn parse_row(def: &SweepDefinition, record: &csv::StringRecord) -> Result<PointRow, String> {
     let n_axes = def.axes.len();

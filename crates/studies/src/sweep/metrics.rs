@@ -7,7 +7,7 @@
 //! `first_time:COL<VALUE` (the first time the column exceeds or falls below the value; empty
 //! when it never does). They are located on the method's dense output, not on the steps (see
 //! [`super::column`]: extremes by Brent's method on the dense output, crossings by the Illinois
-//! method, the average by Clenshaw–Curtis quadrature on each step). The hoop scenes' names are
+//! method, the average by adaptive Clenshaw–Curtis quadrature of each step). The hoop scenes' names are
 //! aliases: `max_tilt` is `max:tilt`, `final_tilt` is `final:tilt`, `time_tilt_exceeds` is
 //! `first_time:tilt>THRESHOLD` with `metrics.tilt_threshold`.
 //!

@@ -72,6 +72,7 @@
 
 pub mod check;
 mod column;
+pub mod compare;
 pub mod definition;
 mod draft;
 mod engine;
@@ -86,6 +87,7 @@ use std::fmt;
 use std::path::PathBuf;
 
 pub use check::{CheckReport, CheckSize, MetricChange, check_points, self_check};
+pub use compare::{MetricDifference, SweepDiff, diff, diff_folders, read_folder};
 pub use definition::{Axis, AxisValues, Sampling, Spacing, SweepDefinition};
 pub use engine::{Progress, RunConfig, SweepReport, merge, run, run_point};
 pub use file_error::{Origin, SweepFileError};
@@ -239,6 +241,9 @@ pub enum SweepError {
     /// Shard folders that do not make one complete sweep.
     #[error("merge: {0}")]
     Merge(String),
+    /// Two sweeps that cannot be compared point by point.
+    #[error("diff: {0}")]
+    Compare(String),
     /// The CSV writer failed (in memory; not expected).
     #[error("CSV: {0}")]
     Csv(String),

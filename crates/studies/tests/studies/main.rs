@@ -2,4 +2,5 @@
 
 mod default_accuracy;
 mod max_tilt_reference;
+mod method_agreement;
 mod work_precision;
