@@ -14,7 +14,7 @@
 //!   2nd ed., Springer 1993, §II.5 and §II.6; coefficients of DOP853 (Dormand–Prince
 //!   8(5,3) with the 7th-order dense output) as published with Hairer's `dop853` code.
 
-use super::{ErrorEstimator, ExplicitTableau};
+use super::{DenseForm, ErrorEstimator, ExplicitTableau};
 
 /// The classical Runge–Kutta method of order 4.
 ///
@@ -45,6 +45,7 @@ pub const RK4: ExplicitTableau<5> = ExplicitTableau {
     b: [1.0 / 6.0, 1.0 / 3.0, 1.0 / 3.0, 1.0 / 6.0, 0.0],
     error: ErrorEstimator::None,
     dense: &[],
+    dense_form: DenseForm::Hermite,
     dense_order: 3,
 };
 
@@ -114,6 +115,7 @@ pub const DP5: ExplicitTableau<7> = ExplicitTableau {
         -1453857185.0 / 822651844.0,
         69997945.0 / 29380423.0,
     ]],
+    dense_form: DenseForm::Hermite,
     dense_order: 4,
 };
 
@@ -537,5 +539,6 @@ pub const DOP853: ExplicitTableau<16> = ExplicitTableau {
             -0.14972683625798562581422125276e3,
         ],
     ],
+    dense_form: DenseForm::Hermite,
     dense_order: 7,
 };
