@@ -44,6 +44,10 @@ impl PiController {
         fac_max: 6.0,
     };
 
+    /// The controller of Verner's pairs: DOP853's (an I controller, the step shrinks at most
+    /// 3× and grows at most 6×).
+    pub const VERNER: Self = Self::DOP853;
+
     /// Factor for the next step after an *accepted* step with error `err ≤ 1`.
     #[must_use]
     pub fn accepted_factor(&self, err: f64, err_prev: f64, q: u32, after_reject: bool) -> f64 {

@@ -15,8 +15,29 @@
 //! (DP5: Shampine's order-4 output, one row; DOP853: Hairer's order-7 output, four rows and
 //! three extra stages, evaluated only when an interpolant is asked for).
 //!
+//! Tsitouras' and Verner's pairs ([`crate::tables::rk_pairs`]) come with continuous weights
+//! instead ([`DenseForm::Polynomial`]):
+//!
+//! `u(θ) = y + h Σᵢ bᵢ(θ) kᵢ`, `bᵢ(θ) = Σ_{m=1}^{q} d_{m,i} θ^m`,
+//!
+//! evaluated by Horner's rule in `θ`; `bᵢ(1) = bᵢ`. Verner's interpolants need extra stages
+//! (3 for 6(5), 6 for 7(6), 8 for 8(7), 10 for 9(8), one of them `f(t + h, y₁)`), which are
+//! again evaluated only when an interpolant is asked for, once per step.
+//!
+//! # Round-off: stages as differences
+//!
+//! Sums of stages are evaluated as `Σ_j a_ij k_j = cᵢ k₁ + Σ_{j>1} a_ij (k_j − k₁)` (and
+//! likewise `Σ bᵢ kᵢ = k₁ + Σ_{i>1} bᵢ (kᵢ − k₁)`, and the interpolant's weights, which sum
+//! to `θ`). In exact arithmetic nothing changes (`Σ_j a_ij = cᵢ`, `Σ bᵢ = 1`); in `f64` the
+//! rounded coefficients of pairs with large entries (Verner's 6(5): `|a_ij|` up to 207 and
+//! `|bᵢ|` up to 73) no longer satisfy the low-order conditions exactly — with the coefficients
+//! rounded to nearest, `Σ bᵢ cᵢ − 1/2` is `−6.5·10⁻¹²` for the 6(5) pair when `cᵢ` are the
+//! row sums — which shows as a global error `O(h)` of ~10⁻¹¹ on Kepler's problem. In the
+//! difference form the rounded `a_ij` and `bᵢ` multiply only `k_j − k₁ = O(h)`, the row sums
+//! are the nodes `cᵢ` exactly, and the defect drops to the rounding of `bᵢ cᵢ` (~10⁻¹⁴).
+//!
 //! # References
-//! See [`crate::tables::explicit`].
+//! See [`crate::tables::explicit`] and [`crate::tables::rk_pairs`].
 
 use crate::control::PiController;
 use crate::error::Error;
@@ -24,7 +45,8 @@ use crate::problem::Ode;
 use crate::state::{VectorState, compensated_add, copy_into};
 use crate::stepper::{AdaptiveStepper, DenseOutput, Stepper, Tolerances};
 use crate::tables::explicit::{DOP853, DP5, RK4};
-use crate::tables::{ErrorEstimator, ExplicitTableau};
+use crate::tables::rk_pairs::{TSIT5, VERN6, VERN7, VERN8, VERN9};
+use crate::tables::{DenseForm, ErrorEstimator, ExplicitTableau};
 
 /// An explicit Runge–Kutta method: a table and its step-size controller.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -41,6 +63,16 @@ pub type Rk4 = ExplicitRungeKutta<5>;
 pub type Dp5 = ExplicitRungeKutta<7>;
 /// DOP853.
 pub type Dop853 = ExplicitRungeKutta<16>;
+/// Tsitouras 5(4).
+pub type Tsit5 = ExplicitRungeKutta<7>;
+/// Verner's 6(5) pair with its order-6 interpolant (12 rows).
+pub type Vern6 = ExplicitRungeKutta<12>;
+/// Verner's 7(6) pair with its order-7 interpolant (16 rows).
+pub type Vern7 = ExplicitRungeKutta<16>;
+/// Verner's 8(7) pair with its order-8 interpolant (21 rows).
+pub type Vern8 = ExplicitRungeKutta<21>;
+/// Verner's 9(8) pair with its order-9 interpolant (26 rows).
+pub type Vern9 = ExplicitRungeKutta<26>;
 
 impl ExplicitRungeKutta<5> {
     /// The classical RK4 (fixed step; cubic Hermite dense output).
@@ -62,6 +94,15 @@ impl ExplicitRungeKutta<7> {
             controller: PiController::DP5,
         }
     }
+
+    /// Tsitouras 5(4) (FSAL, order-4 dense output) with the PI controller of DP5.
+    #[must_use]
+    pub const fn tsit5() -> Self {
+        Self {
+            table: &TSIT5,
+            controller: PiController::DP5,
+        }
+    }
 }
 
 impl ExplicitRungeKutta<16> {
@@ -71,6 +112,48 @@ impl ExplicitRungeKutta<16> {
         Self {
             table: &DOP853,
             controller: PiController::DOP853,
+        }
+    }
+
+    /// Verner's "most efficient" 7(6) pair (10 stages, order-7 interpolant).
+    #[must_use]
+    pub const fn vern7() -> Self {
+        Self {
+            table: &VERN7,
+            controller: PiController::VERNER,
+        }
+    }
+}
+
+impl ExplicitRungeKutta<12> {
+    /// Verner's "most efficient" 6(5) pair (9 stages with FSAL, order-6 interpolant).
+    #[must_use]
+    pub const fn vern6() -> Self {
+        Self {
+            table: &VERN6,
+            controller: PiController::VERNER,
+        }
+    }
+}
+
+impl ExplicitRungeKutta<21> {
+    /// Verner's "most efficient" 8(7) pair (13 stages, order-8 interpolant).
+    #[must_use]
+    pub const fn vern8() -> Self {
+        Self {
+            table: &VERN8,
+            controller: PiController::VERNER,
+        }
+    }
+}
+
+impl ExplicitRungeKutta<26> {
+    /// Verner's "most efficient" 9(8) pair (16 stages, order-9 interpolant).
+    #[must_use]
+    pub const fn vern9() -> Self {
+        Self {
+            table: &VERN9,
+            controller: PiController::VERNER,
         }
     }
 }
@@ -130,16 +213,24 @@ impl<const S: usize, Y: VectorState> ExplicitRkStepper<S, Y> {
         self.table
     }
 
-    /// `ytmp = base + h Σ_{j<i} a_ij k_j` (`base` = `y0` of the last step when `None`).
+    /// `ytmp = base + h Σ_{j<i} a_ij k_j` (`base` = `y0` of the last step when `None`),
+    /// evaluated as `base + h (cᵢ k₁ + Σ_{1<j<i} a_ij (k_j − k₁))` (module doc).
     fn stage_argument(&mut self, base: Option<&Y>, i: usize, h: f64) {
         let row = &self.table.a[i];
         copy_into(&mut self.ytmp, base.unwrap_or(&self.y0));
         let out = self.ytmp.as_mut_slice();
-        for (j, &a) in row.iter().enumerate().take(i) {
+        let k0 = self.k[0].as_slice();
+        let hc = h * self.table.c[i];
+        if hc != 0.0 {
+            for (o, k) in out.iter_mut().zip(k0) {
+                *o += hc * k;
+            }
+        }
+        for (j, &a) in row.iter().enumerate().take(i).skip(1) {
             if a != 0.0 {
                 let ha = h * a;
-                for (o, kj) in out.iter_mut().zip(self.k[j].as_slice()) {
-                    *o += ha * kj;
+                for ((o, kj), k) in out.iter_mut().zip(self.k[j].as_slice()).zip(k0) {
+                    *o += ha * (kj - k);
                 }
             }
         }
@@ -172,13 +263,17 @@ impl<const S: usize, Y: VectorState> ExplicitRkStepper<S, Y> {
             self.stage_argument(Some(y), i, h);
             problem.rhs(t + tab.c[i] * h, &self.ytmp, &mut self.k[i]);
         }
+        // delta = h Σ bᵢ kᵢ = h (k₁ + Σ_{i>1} bᵢ (kᵢ − k₁)) since Σ bᵢ = 1 (module doc).
         let d = self.delta.as_mut_slice();
-        d.fill(0.0);
-        for (j, &b) in tab.b.iter().enumerate().take(tab.stages) {
+        let k0 = self.k[0].as_slice();
+        for (o, k) in d.iter_mut().zip(k0) {
+            *o = h * k;
+        }
+        for (j, &b) in tab.b.iter().enumerate().take(tab.stages).skip(1) {
             if b != 0.0 {
                 let hb = h * b;
-                for (o, kj) in d.iter_mut().zip(self.k[j].as_slice()) {
-                    *o += hb * kj;
+                for ((o, kj), k) in d.iter_mut().zip(self.k[j].as_slice()).zip(k0) {
+                    *o += hb * (kj - k);
                 }
             }
         }
@@ -383,6 +478,26 @@ impl<const S: usize, Y: VectorState, P: Ode<Y>> DenseOutput<P> for ExplicitRkSte
         let tab = self.table;
         let h = self.h;
         let theta = (t - self.t0) / h;
+        if tab.dense_form == DenseForm::Polynomial {
+            // u(θ) = y + Σ_m θ^m W_m, W_m = h Σᵢ d_{m,i} kᵢ, by Horner's rule in θ.
+            // Σᵢ d_{m,i} = [m = 0] (the weights sum to θ): W_m = h (δ_{m0} k₁ + Σ_{i>1} d_{m,i} (kᵢ − k₁)).
+            let o = out.as_mut_slice();
+            for i in 0..o.len() {
+                let k0 = self.k[0].as_slice()[i];
+                let mut acc = 0.0;
+                for (m, row) in tab.dense.iter().enumerate().rev() {
+                    let mut w = if m == 0 { k0 } else { 0.0 };
+                    for (j, &d) in row.iter().enumerate().skip(1) {
+                        if d != 0.0 {
+                            w += d * (self.k[j].as_slice()[i] - k0);
+                        }
+                    }
+                    acc = theta * (h * w + acc);
+                }
+                o[i] = self.y0.as_slice()[i] + acc;
+            }
+            return;
+        }
         let theta1 = 1.0 - theta;
         let n_r = 4 + tab.dense.len();
         let o = out.as_mut_slice();

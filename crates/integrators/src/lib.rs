@@ -1,7 +1,8 @@
 //! # tumble-integrators
 //!
 //! Integrators for tumble's models, with accuracy we can measure: explicit Runge–Kutta with
-//! error control (RK4, Dormand–Prince 5(4), DOP853 with dense output and event location),
+//! error control (RK4, Dormand–Prince 5(4), DOP853, Tsitouras 5(4) and Verner's "most
+//! efficient" 6(5), 7(6), 8(7), 9(8) pairs, all with dense output and event location),
 //! symplectic Euler and Störmer–Verlet, symmetric compositions of any symmetric base method
 //! (Yoshida 4/6/8, Suzuki 4, McLachlan 4, Kahan–Li 6/8, Sofroniou–Spaletta 10), Gauss–Legendre
 //! collocation with 1…6 stages, and, in [`rigid`], methods on `SO(3)` and `SO(3) × ℝⁿ`: the
@@ -89,7 +90,9 @@ pub use driver::{
     Observer, Report, Status,
 };
 pub use error::Error;
-pub use explicit::{Dop853, Dp5, ExplicitRkStepper, ExplicitRungeKutta, Rk4};
+pub use explicit::{
+    Dop853, Dp5, ExplicitRkStepper, ExplicitRungeKutta, Rk4, Tsit5, Vern6, Vern7, Vern8, Vern9,
+};
 pub use gauss::{
     Gauss, GaussStepper, StageSolver, gauss2, gauss4, gauss6, gauss8, gauss10, gauss12,
 };

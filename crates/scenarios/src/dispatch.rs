@@ -98,6 +98,11 @@ where
             match name {
                 "dp5" => adaptive!(ExplicitRungeKutta::dp5().stepper(y)),
                 "dop853" => adaptive!(ExplicitRungeKutta::dop853().stepper(y)),
+                "tsit5" => adaptive!(ExplicitRungeKutta::tsit5().stepper(y)),
+                "vern6" => adaptive!(ExplicitRungeKutta::vern6().stepper(y)),
+                "vern7" => adaptive!(ExplicitRungeKutta::vern7().stepper(y)),
+                "vern8" => adaptive!(ExplicitRungeKutta::vern8().stepper(y)),
+                "vern9" => adaptive!(ExplicitRungeKutta::vern9().stepper(y)),
                 _ => return Err(no_stepper(plan, "first-order ODE")),
             }
         }

@@ -1,4 +1,5 @@
-//! Explicit Runge–Kutta tables: RK4, Dormand–Prince 5(4), DOP853.
+//! Explicit Runge–Kutta tables: RK4, Dormand–Prince 5(4), DOP853 (Tsitouras' and Verner's
+//! pairs are in [`crate::tables::rk_pairs`]).
 //!
 //! Each table is a Butcher tableau `(c, A, b)` plus an error estimator and the coefficients
 //! of a dense output (see [`crate::explicit`] for the interpolation formula).
@@ -13,8 +14,14 @@
 //! - E. Hairer, S. P. Nørsett, G. Wanner, *Solving Ordinary Differential Equations I*,
 //!   2nd ed., Springer 1993, §II.5 and §II.6; coefficients of DOP853 (Dormand–Prince
 //!   8(5,3) with the 7th-order dense output) as published with Hairer's `dop853` code.
+//! - Ch. Tsitouras, *Runge–Kutta pairs of order 5(4) satisfying only the first column
+//!   simplifying assumption*, Comput. Math. Appl. 62 (2011) 770–775 (`tsit5`).
+//! - J. H. Verner, *Numerically optimal Runge–Kutta pairs with interpolants*, Numer.
+//!   Algorithms 53 (2010) 383–396, and the "most efficient" coefficient files at
+//!   <https://www.sfu.ca/~jverner/>: RKV65.IIIXb, RKV76.IIa (interpolant as corrected in
+//!   2024), RKV87.IIa, RKV98.IIa (`vern6` … `vern9`).
 
-use super::{ErrorEstimator, ExplicitTableau};
+use super::{DenseForm, ErrorEstimator, ExplicitTableau};
 
 /// The classical Runge–Kutta method of order 4.
 ///
@@ -45,6 +52,7 @@ pub const RK4: ExplicitTableau<5> = ExplicitTableau {
     b: [1.0 / 6.0, 1.0 / 3.0, 1.0 / 3.0, 1.0 / 6.0, 0.0],
     error: ErrorEstimator::None,
     dense: &[],
+    dense_form: DenseForm::Hermite,
     dense_order: 3,
 };
 
@@ -114,6 +122,7 @@ pub const DP5: ExplicitTableau<7> = ExplicitTableau {
         -1453857185.0 / 822651844.0,
         69997945.0 / 29380423.0,
     ]],
+    dense_form: DenseForm::Hermite,
     dense_order: 4,
 };
 
@@ -537,5 +546,6 @@ pub const DOP853: ExplicitTableau<16> = ExplicitTableau {
             -0.14972683625798562581422125276e3,
         ],
     ],
+    dense_form: DenseForm::Hermite,
     dense_order: 7,
 };

@@ -12,6 +12,7 @@
 pub mod composition;
 pub mod explicit;
 pub mod gauss;
+pub mod rk_pairs;
 
 /// Butcher tableau of an explicit Runge–Kutta method with `S` rows, its error estimator and
 /// its dense output.
@@ -38,10 +39,24 @@ pub struct ExplicitTableau<const S: usize> {
     pub b: [f64; S],
     /// Error estimator.
     pub error: ErrorEstimator<S>,
-    /// Dense output: rows `d` of the polynomial part (see [`crate::explicit`]).
+    /// Dense output: rows read as [`Self::dense_form`] says (see [`crate::explicit`]).
     pub dense: &'static [[f64; S]],
+    /// How the rows of [`Self::dense`] define the interpolant.
+    pub dense_form: DenseForm,
     /// Order of the dense output.
     pub dense_order: u32,
+}
+
+/// How the rows `d` of an explicit table's dense output define the interpolant on a step
+/// `[t, t + h]`, `θ = (τ − t)/h` (formulas in [`crate::explicit`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum DenseForm {
+    /// The cubic Hermite interpolant of `y`, `y₁`, `f(t, y)`, `f(t + h, y₁)` corrected by
+    /// the terms `r_{4+m} = h Σᵢ d_{m,i} kᵢ` (Hairer's form for DP5 and DOP853).
+    Hermite,
+    /// Continuous weights: `u(θ) = y + h Σᵢ bᵢ(θ) kᵢ` with `bᵢ(θ) = Σ_m d_{m,i} θ^(m+1)`
+    /// (Verner's and Tsitouras' interpolants).
+    Polynomial,
 }
 
 /// How an explicit pair estimates its local error.

@@ -9,6 +9,11 @@ fn registry_has_every_required_name_once() {
         "rk4",
         "dp5",
         "dop853",
+        "tsit5",
+        "vern6",
+        "vern7",
+        "vern8",
+        "vern9",
         "symplectic-euler",
         "verlet",
         "yoshida4",
@@ -49,5 +54,17 @@ fn registry_has_every_required_name_once() {
     assert_eq!(g.stages, 6);
     assert!(!g.properties.explicit && g.properties.symplectic);
     assert!(find("dop853").unwrap().properties.adaptive);
+    for (name, order) in [
+        ("tsit5", 5),
+        ("vern6", 6),
+        ("vern7", 7),
+        ("vern8", 8),
+        ("vern9", 9),
+    ] {
+        let m = find(name).unwrap();
+        assert_eq!(m.order, order, "{name}");
+        assert_eq!(m.family, Family::ExplicitRungeKutta);
+        assert!(m.properties.adaptive && m.properties.dense_output && m.properties.explicit);
+    }
     assert!(find("nope").is_err());
 }

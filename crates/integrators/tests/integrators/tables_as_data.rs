@@ -5,7 +5,8 @@
 use tumble_integrators::tables::composition::ALL;
 use tumble_integrators::tables::explicit::{DOP853, DP5, RK4};
 use tumble_integrators::tables::gauss::{GAUSS2, GAUSS4, GAUSS6, GAUSS8, GAUSS10, GAUSS12};
-use tumble_integrators::tables::{ErrorEstimator, ExplicitTableau, GaussTableau};
+use tumble_integrators::tables::rk_pairs::{TSIT5, VERN6, VERN7, VERN8, VERN9};
+use tumble_integrators::tables::{DenseForm, ErrorEstimator, ExplicitTableau, GaussTableau};
 
 const EPS: f64 = f64::EPSILON;
 
@@ -45,8 +46,16 @@ fn trees(max_order: usize) -> Vec<(usize, Vec<usize>)> {
     all
 }
 
-/// Max over trees of |Φ(t) − 1/γ(t)| / (10 ε · scale(t)) for weights `b`; must be ≤ 1.
-fn order_condition_defect<const S: usize>(a: &[[f64; S]; S], b: &[f64; S], order: usize) -> f64 {
+/// Max over trees `t` with `|t| ≤ order` of `|Σᵢ wᵢ gᵢ(t) − target(|t|, γ(t))| / (10 ε · scale(t))`,
+/// with `scale(t) = Σᵢ |wᵢ| |g|ᵢ(t)` (the same sums in absolute values, at least 1): the
+/// elementary weight's defect in units of its own rounding error. `≤ 1` means the condition
+/// holds in f64.
+fn weights_defect<const S: usize>(
+    a: &[[f64; S]; S],
+    w: &[f64; S],
+    order: usize,
+    target: impl Fn(usize, f64) -> f64,
+) -> f64 {
     let ts = trees(order);
     let mut g: Vec<[f64; S]> = Vec::new();
     let mut gabs: Vec<[f64; S]> = Vec::new();
@@ -68,14 +77,39 @@ fn order_condition_defect<const S: usize>(a: &[[f64; S]; S], b: &[f64; S], order
             }
             gm *= gamma[c];
         }
-        let phi: f64 = (0..S).map(|i| b[i] * v[i]).sum();
-        let scale: f64 = (0..S).map(|i| b[i].abs() * va[i]).sum::<f64>().max(1.0);
-        worst = worst.max((phi - 1.0 / gm).abs() / (10.0 * EPS * scale));
+        let phi: f64 = (0..S).map(|i| w[i] * v[i]).sum();
+        let scale: f64 = (0..S).map(|i| w[i].abs() * va[i]).sum::<f64>().max(1.0);
+        worst = worst.max((phi - target(*n, gm)).abs() / (10.0 * EPS * scale));
         g.push(v);
         gabs.push(va);
         gamma.push(gm);
     }
     worst
+}
+
+/// [`weights_defect`] of the order conditions `Σᵢ bᵢ gᵢ(t) = 1/γ(t)`.
+fn order_condition_defect<const S: usize>(a: &[[f64; S]; S], b: &[f64; S], order: usize) -> f64 {
+    weights_defect(a, b, order, |_, gamma| 1.0 / gamma)
+}
+
+/// Worst [`weights_defect`] of a polynomial interpolant `bᵢ(θ) = Σ_m d_{m,i} θ^(m+1)` of order
+/// `q`: `Σᵢ bᵢ(θ) gᵢ(t) = θ^|t| / γ(t)` for `|t| ≤ q`, i.e. row `m` meets `1/γ(t)` on the
+/// trees with `m + 1` nodes and `0` on the others.
+fn interpolant_defect<const S: usize>(a: &[[f64; S]; S], dense: &[[f64; S]], q: usize) -> f64 {
+    dense
+        .iter()
+        .enumerate()
+        .map(|(m, row)| {
+            weights_defect(
+                a,
+                row,
+                q,
+                |n, gamma| {
+                    if n == m + 1 { 1.0 / gamma } else { 0.0 }
+                },
+            )
+        })
+        .fold(0.0, f64::max)
 }
 
 #[test]
@@ -116,6 +150,59 @@ fn explicit_tables_have_row_sums_and_order_conditions() {
     check_explicit(&RK4);
     check_explicit(&DP5);
     check_explicit(&DOP853);
+}
+
+/// Tsitouras' and Verner's tables, recomputed in f64 independently of the generator: row
+/// sums, explicitness, FSAL row, all order conditions of `b` (order p), of the embedded
+/// `b − e` (order p − 1, and not p), and of the interpolant (order q, with `bᵢ(1) = bᵢ`).
+fn check_pair<const S: usize>(t: &ExplicitTableau<S>, dense_order: usize) {
+    check_explicit(t);
+    let p = t.order as usize;
+    let ErrorEstimator::Embedded { weights, order } = t.error else {
+        panic!("{} has an embedded pair", t.name)
+    };
+    assert_eq!(order as usize, p, "{}: controller exponent 1/p", t.name);
+    let bhat: [f64; S] = std::array::from_fn(|i| t.b[i] - weights[i]);
+    let emb = order_condition_defect(&t.a, &bhat, p - 1);
+    let not_p = order_condition_defect(&t.a, &bhat, p);
+    assert!(
+        emb <= 1.0,
+        "{}: embedded conditions off by {emb} × 10ε",
+        t.name
+    );
+    assert!(not_p > 1e3, "{}: the embedded formula has order p", t.name);
+    assert_eq!(t.dense_form, DenseForm::Polynomial);
+    assert_eq!(t.dense.len(), dense_order, "{}: degree = order", t.name);
+    assert_eq!(t.dense_order as usize, dense_order);
+    let defect = interpolant_defect(&t.a, t.dense, dense_order);
+    eprintln!(
+        "{}: interpolant conditions to order {dense_order} within {defect:.2} × 10ε",
+        t.name
+    );
+    assert!(
+        defect <= 1.0,
+        "{}: interpolant off by {defect} × 10ε",
+        t.name
+    );
+    for i in 0..S {
+        let at_one: f64 = t.dense.iter().map(|row| row[i]).sum();
+        let scale = t.dense.iter().map(|row| row[i].abs()).sum::<f64>().max(1.0);
+        assert!(
+            (at_one - t.b[i]).abs() <= 10.0 * EPS * scale,
+            "{}: b_{i}(1) = {at_one} vs b = {}",
+            t.name,
+            t.b[i]
+        );
+    }
+}
+
+#[test]
+fn tsitouras_and_verner_tables_satisfy_their_order_conditions_in_f64() {
+    check_pair(&TSIT5, 4);
+    check_pair(&VERN6, 6);
+    check_pair(&VERN7, 7);
+    check_pair(&VERN8, 8);
+    check_pair(&VERN9, 9);
 }
 
 #[test]
