@@ -366,7 +366,8 @@ fn cost_at(
     Some(10f64.powf(ca + s * (cb - ca)))
 }
 
-/// `--long`: the energy error of the long-run methods and of DOP853 at a matching cost.
+/// `--long`: the energy error of the long-run methods and of the adaptive method of highest
+/// order at a matching cost.
 fn long(
     scene: &'static dyn Scene,
     origin: &str,

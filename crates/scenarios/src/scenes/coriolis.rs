@@ -124,7 +124,7 @@ pub static CORIOLIS_DROP: SceneInfo = SceneInfo {
     needs_dense_output: true,
     default_integrator: "dop853",
     default_step: 1e-3,
-    default_error: 1.1e-14,
+    default_error: 4.0e-14,
     default_t_end: 60.0,
     diagnostics: &["energy", "energy_rel_err"],
     rate_names: &[],
