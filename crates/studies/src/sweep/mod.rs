@@ -71,11 +71,13 @@
 //! `AtomicBool`.
 
 pub mod check;
+pub mod compute;
 pub mod definition;
 mod draft;
 mod engine;
 pub mod file_error;
 pub mod journal;
+pub mod merge;
 pub mod metrics;
 mod overrides;
 mod raw;
@@ -85,10 +87,12 @@ use std::fmt;
 use std::path::PathBuf;
 
 pub use check::{CheckReport, CheckSize, MetricChange, check_points, self_check};
+pub use compute::{COMPUTE, ComputeRecord, ComputeRun, ComputeTotals};
 pub use definition::{Axis, AxisValues, Sampling, Spacing, SweepDefinition};
-pub use engine::{Progress, RunConfig, SweepReport, merge, run, run_point};
+pub use engine::{Progress, RunConfig, SweepReport, run, run_point};
 pub use file_error::{Origin, SweepFileError};
 pub use journal::{DEFINITION, JOURNAL, PointRow, RESULTS, Status, results_csv};
+pub use merge::{Unfinished, UnfinishedShard, merge};
 pub use metrics::Metric;
 pub use overrides::{Override, OverrideValue};
 
@@ -224,6 +228,16 @@ pub enum SweepError {
         /// What is wrong.
         reason: String,
     },
+    /// The compute record is damaged beyond a torn last line.
+    #[error("{}:{line}: damaged compute record: {reason}", path.display())]
+    Compute {
+        /// The record.
+        path: PathBuf,
+        /// 1-based line.
+        line: usize,
+        /// What is wrong.
+        reason: String,
+    },
     /// An invalid `--shard K/N`, or a folder written for another shard.
     #[error("shard {spec}: {reason}")]
     Shard {
@@ -235,9 +249,12 @@ pub enum SweepError {
     /// The self-check could not run.
     #[error("self-check: {0}")]
     SelfCheck(String),
-    /// Shard folders that do not make one complete sweep.
+    /// Shard folders that do not make one sweep.
     #[error("merge: {0}")]
     Merge(String),
+    /// Shards of the sweep are missing or incomplete.
+    #[error("merge: {0}")]
+    Unfinished(Unfinished),
     /// The CSV writer failed (in memory; not expected).
     #[error("CSV: {0}")]
     Csv(String),
