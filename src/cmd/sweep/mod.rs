@@ -1,15 +1,17 @@
 //! `tumble sweep`: run a parameter sweep (a TOML sweep file, or the built-in hoop-tilt map)
 //! in parallel into an output folder; `tumble sweep merge` joins the folders of a sharded
-//! sweep.
+//! sweep; `tumble sweep slurm` writes the job script that runs a sharded sweep on a Slurm
+//! cluster ([`slurm`]).
 //!
 //! Two stages, as everywhere in the CLI: the file and the `--set` overrides become a validated
 //! [`SweepDefinition`] (every error names the key and its line, or the override) and the
 //! flags are checked before any point runs; then the library runs the points, appending each
-//! row to the folder's journal as it finishes, while a progress bar (only when stderr is a
-//! terminal) shows the count and an ETA.
+//! row to the folder's journal as it finishes, while a progress bar shows the count and an
+//! ETA when stderr is a terminal, and otherwise (a batch log) a line every `--progress-every`
+//! seconds does.
 //!
-//! Output folder: `sweep.toml` (the resolved definition) and `journal.csv` (the resumable
-//! state) from the start; at the end `results.csv` (one row per point in index order),
+//! Output folder: `sweep.toml` (the resolved definition), `journal.csv` (the resumable
+//! state) and `compute.csv` (a line per run on the folder) from the start; at the end `results.csv` (one row per point in index order),
 //! the map (`tilt-map.png`/`.svg` for a tilt metric, `<metric>-map.*` otherwise; a grid of
 //! two axes) and its slices (`tilt-slices.png`/`.svg`: the metric against the first axis for
 //! a few values of the second; one-axis grids get this plot alone), then `manifest.json`.

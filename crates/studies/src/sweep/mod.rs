@@ -66,6 +66,9 @@
 //! one row per point in index order (`index`, axis values, metrics, `status`, `reason`),
 //! identical byte for byte whatever the threads, interruptions or shards. [`merge`] joins the
 //! folders of the `N` shards of a sweep into the folder an unsharded run writes.
+//! Each run on a folder appends a line to its compute record ([`compute`]: host, threads,
+//! wall time, points computed and failed) when it ends, completed or stopped; a merge
+//! gathers the records of its shards.
 //!
 //! The library never prints: progress goes to a callback, cancellation comes in through an
 //! `AtomicBool`.
