@@ -9,7 +9,7 @@ use tumble_scenarios::{Params, StepControl};
 
 use crate::provenance::Provenance;
 use tumble_studies::sweep::{
-    AxisValues, CheckReport, Sampling, Shard, SweepDefinition, SweepReport,
+    AxisValues, CheckReport, ComputeRecord, Sampling, Shard, SweepDefinition, SweepReport,
 };
 use tumble_studies::work_precision::{Config, Ladder, Reference};
 
@@ -193,10 +193,80 @@ impl SelfCheckJson {
     }
 }
 
+/// One run of the sweep on a folder (a shard's, for a merge).
+#[derive(Serialize)]
+struct ComputeRunJson {
+    complete: bool,
+    computed_points: u64,
+    failed_points: u64,
+    host: String,
+    points_per_second: Option<f64>,
+    shard: String,
+    threads: usize,
+    wall_time_s: f64,
+}
+
+/// The totals of a compute record.
+#[derive(Serialize)]
+struct ComputeTotalsJson {
+    computed_points: u64,
+    failed_points: u64,
+    hosts: Vec<String>,
+    max_threads: usize,
+    runs: usize,
+    thread_seconds: f64,
+    unrecorded_points: u64,
+    wall_time_s: f64,
+}
+
+/// Every run that computed the sweep's points, and the totals.
+#[derive(Serialize)]
+struct ComputeJson {
+    runs: Vec<ComputeRunJson>,
+    totals: ComputeTotalsJson,
+}
+
+impl ComputeJson {
+    fn new(record: &ComputeRecord, finished: u64) -> Self {
+        let t = record.totals();
+        ComputeJson {
+            runs: record
+                .runs
+                .iter()
+                .map(|r| {
+                    let s = r.wall_time.as_secs_f64();
+                    ComputeRunJson {
+                        complete: r.complete,
+                        computed_points: r.computed,
+                        failed_points: r.failed,
+                        host: r.host.clone(),
+                        points_per_second: (r.computed > 0 && s > 0.0)
+                            .then(|| r.computed as f64 / s),
+                        shard: r.shard.to_string(),
+                        threads: r.threads,
+                        wall_time_s: s,
+                    }
+                })
+                .collect(),
+            totals: ComputeTotalsJson {
+                computed_points: t.computed,
+                failed_points: t.failed,
+                hosts: t.hosts,
+                max_threads: t.max_threads,
+                runs: t.runs,
+                thread_seconds: t.thread_seconds,
+                unrecorded_points: record.unrecorded(finished),
+                wall_time_s: t.wall_time.as_secs_f64(),
+            },
+        }
+    }
+}
+
 /// `manifest.json` of a sweep folder.
 #[derive(Serialize)]
 pub struct SweepManifest {
     command: String,
+    compute: ComputeJson,
     computed_points: u64,
     definition: DefinitionJson,
     definition_toml: String,
@@ -222,6 +292,11 @@ pub struct SweepManifest {
 impl SweepManifest {
     /// The manifest of `def` run (or merged, by `command`) into `report`, with the plot files
     /// written.
+    ///
+    /// `computed_points`, `wall_time_s`, `points_per_second` and `threads` are those of the
+    /// whole compute record — every run on the folder, or on every shard of a merge — (the
+    /// most threads of a run); `compute` lists the runs; `resumed_points` are the points this
+    /// command found finished.
     #[must_use]
     pub fn new(
         def: &SweepDefinition,
@@ -243,12 +318,16 @@ impl SweepManifest {
         let mut files = vec![
             "sweep.toml".to_string(),
             "journal.csv".to_string(),
+            "compute.csv".to_string(),
             "results.csv".to_string(),
         ];
         files.extend(plots.iter().cloned());
+        let totals = report.compute.totals();
+        let wall = totals.wall_time.as_secs_f64();
         SweepManifest {
             command: command.to_string(),
-            computed_points: report.computed,
+            compute: ComputeJson::new(&report.compute, report.rows.len() as u64),
+            computed_points: totals.computed,
             definition: DefinitionJson::new(def),
             definition_toml: def.to_toml(),
             dt,
@@ -258,16 +337,17 @@ impl SweepManifest {
             files,
             integrator: def.plan.integrator(),
             points: report.total,
-            points_per_second: report.points_per_second(),
+            points_per_second: (totals.computed > 0 && wall > 0.0)
+                .then(|| totals.computed as f64 / wall),
             provenance: Provenance::now(report.threads),
             resumed_points: report.resumed,
             self_check: self_check.map(|(c, tol)| SelfCheckJson::new(c, tol)),
             shard: shard.to_string(),
             t_end: def.plan.t_end,
-            threads: report.threads,
+            threads: totals.max_threads,
             tol,
             tumble_version: env!("CARGO_PKG_VERSION"),
-            wall_time_s: report.elapsed.as_secs_f64(),
+            wall_time_s: wall,
         }
     }
 }

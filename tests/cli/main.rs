@@ -5,6 +5,7 @@ mod interrupts;
 mod outputs_and_limits;
 mod scenes;
 mod simulate;
+mod slurm;
 mod special_files;
 mod support;
 mod sweep;

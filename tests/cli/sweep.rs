@@ -81,6 +81,7 @@ fn one_and_two_threads_write_the_same_results_and_a_complete_folder() {
     assert_eq!(
         files,
         [
+            "compute.csv",
             "journal.csv",
             "manifest.json",
             "results.csv",
@@ -241,7 +242,8 @@ fn three_shards_merge_into_the_unsharded_results() {
     );
     assert_eq!(out.status.code(), Some(1));
     assert!(
-        stderr(&out).contains("missing shard 2/3"),
+        stderr(&out).contains("1 of 3 shards not finished: 2/3")
+            && stderr(&out).contains("shard 2/3: no folder given holds it"),
         "{}",
         stderr(&out)
     );

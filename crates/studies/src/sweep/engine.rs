@@ -2,13 +2,14 @@
 
 use std::collections::BTreeMap;
 use std::panic::{AssertUnwindSafe, catch_unwind};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc;
 use std::time::{Duration, Instant};
 
 use rayon::prelude::*;
 
+use super::compute::{ComputeRecord, ComputeRun};
 use super::definition::SweepDefinition;
 use super::journal::{self, DEFINITION, JOURNAL, PointRow, RESULTS, Status};
 use super::metrics::MetricRecorder;
@@ -66,6 +67,9 @@ pub struct SweepReport {
     pub elapsed: Duration,
     /// Threads used.
     pub threads: usize,
+    /// The compute record of the folder: every run on it, this one included (a merge: the
+    /// runs of every shard).
+    pub compute: ComputeRecord,
 }
 
 impl SweepReport {
@@ -206,7 +210,7 @@ fn execute(
 }
 
 /// Prepares `dir` for `def`: returns the journal writer and the rows already finished.
-fn open_folder(
+pub(crate) fn open_folder(
     def: &SweepDefinition,
     dir: &Path,
     shard: Shard,
@@ -260,6 +264,8 @@ fn open_folder(
         });
     }
     write_whole(&definition_path, text.as_bytes())?;
+    // A fresh sweep starts a fresh compute record.
+    ComputeRecord::default().write(dir)?;
     let writer = journal::Writer::create(&journal_path, def, &text, shard)?;
     Ok((writer, BTreeMap::new()))
 }
@@ -271,7 +277,7 @@ fn write_whole(path: &Path, bytes: &[u8]) -> Result<(), SweepError> {
 }
 
 /// The first line where two definition texts differ, for messages.
-fn first_difference(stored: &str, new: &str) -> String {
+pub(crate) fn first_difference(stored: &str, new: &str) -> String {
     let (mut a, mut b) = (stored.lines(), new.lines());
     let mut line = 1;
     loop {
@@ -323,6 +329,7 @@ pub fn run(
     };
     progress(&state);
     let mut computed = 0;
+    let mut failed = 0;
     let result = execute(
         &pending,
         threads,
@@ -334,6 +341,7 @@ pub fn run(
             state.finished += 1;
             if row.status != Status::Ok {
                 state.failed += 1;
+                failed += 1;
             }
             rows.insert(row.index, row);
             progress(&state);
@@ -343,122 +351,29 @@ pub fn run(
     let flushed = writer.flush();
     result?;
     flushed?;
+    // The run adds itself to the folder's compute record, complete or stopped.
+    let elapsed = start.elapsed();
+    ComputeRecord::append(
+        dir,
+        &ComputeRun {
+            shard: config.shard,
+            host: tumble_output::host_name(),
+            threads,
+            wall_time: elapsed,
+            computed,
+            failed,
+            complete: rows.len() as u64 == total,
+        },
+    )?;
     Ok(SweepReport {
         rows: rows.into_values().collect(),
         total,
         computed,
         resumed,
-        elapsed: start.elapsed(),
+        elapsed,
         threads,
+        compute: ComputeRecord::read(dir)?,
     })
-}
-
-/// Joins the folders of the `N` shards of one sweep into `out` as an unsharded run would
-/// have written it (`sweep.toml` and a complete journal); returns the definition and every
-/// row in index order.
-///
-/// # Errors
-/// [`SweepError::Merge`] when the folders hold different sweeps, a shard is missing, repeated
-/// or incomplete; errors reading them; `out` already holding a sweep.
-pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<(SweepDefinition, SweepReport), SweepError> {
-    let start = Instant::now();
-    let Some(first) = dirs.first() else {
-        return Err(SweepError::Merge("no folders to merge".into()));
-    };
-    let read_text = |dir: &Path| {
-        let path = dir.join(DEFINITION);
-        std::fs::read_to_string(&path).map_err(|source| SweepError::Io {
-            path,
-            what: "cannot read the sweep's definition (is this a sweep folder?)",
-            source,
-        })
-    };
-    let text = read_text(first)?;
-    let def = SweepDefinition::parse(&text, &first.join(DEFINITION).display().to_string(), &[])?;
-    if def.to_toml() != text {
-        return Err(SweepError::DifferentSweep {
-            dir: first.clone(),
-            reason: "its sweep.toml is not the resolved form tumble writes (edited by hand?)"
-                .into(),
-        });
-    }
-    let mut rows: BTreeMap<u64, PointRow> = BTreeMap::new();
-    let mut seen: Vec<Option<PathBuf>> = Vec::new();
-    let mut count = None;
-    for dir in dirs {
-        let other = read_text(dir)?;
-        if other != text {
-            return Err(SweepError::Merge(format!(
-                "{} and {} hold different sweeps: {}",
-                first.display(),
-                dir.display(),
-                first_difference(&text, &other)
-            )));
-        }
-        let contents = journal::read(&dir.join(JOURNAL), &def, &text)?;
-        let shard = contents.shard;
-        let n = *count.get_or_insert(shard.count);
-        if shard.count != n {
-            return Err(SweepError::Merge(format!(
-                "{} is shard {shard}, but {} is one of {n} shards",
-                dir.display(),
-                first.display()
-            )));
-        }
-        seen.resize(n as usize, None);
-        if let Some(previous) = &seen[(shard.index - 1) as usize] {
-            return Err(SweepError::Merge(format!(
-                "{} and {} are both shard {shard}",
-                previous.display(),
-                dir.display()
-            )));
-        }
-        seen[(shard.index - 1) as usize] = Some(dir.clone());
-        let finished = contents.rows.len() as u64;
-        if finished != shard.size(def.points()) {
-            return Err(SweepError::Merge(format!(
-                "{}: shard {shard} is incomplete ({finished} of {} points); finish it with \
-                 `tumble sweep {} -o {} --shard {shard} --resume`",
-                dir.display(),
-                shard.size(def.points()),
-                dir.join(DEFINITION).display(),
-                dir.display()
-            )));
-        }
-        rows.extend(contents.rows);
-    }
-    let missing: Vec<String> = seen
-        .iter()
-        .enumerate()
-        .filter(|(_, d)| d.is_none())
-        .map(|(k, _)| format!("{}/{}", k + 1, seen.len()))
-        .collect();
-    if !missing.is_empty() {
-        return Err(SweepError::Merge(format!(
-            "missing shard{} {}",
-            if missing.len() == 1 { "" } else { "s" },
-            missing.join(", ")
-        )));
-    }
-    // Write the merged folder: definition, then a complete journal in index order.
-    let (mut writer, _) = open_folder(&def, out, Shard::ALL, false)?;
-    let rows: Vec<PointRow> = rows.into_values().collect();
-    for row in &rows {
-        writer.push(&def, row)?;
-    }
-    writer.flush()?;
-    let total = def.points();
-    Ok((
-        def,
-        SweepReport {
-            rows,
-            total,
-            computed: 0,
-            resumed: total,
-            elapsed: start.elapsed(),
-            threads: 0,
-        },
-    ))
 }
 
 #[cfg(test)]

@@ -103,6 +103,42 @@ fn parse_first_line(line: &str) -> Option<(Shard, u64)> {
     Some((shard, u64::from_str_radix(rest.trim_end(), 16).ok()?))
 }
 
+/// The shard a journal was written for, from its first line; `None` when there is no
+/// journal at `path`.
+///
+/// # Errors
+/// [`SweepError::Io`] when it cannot be read, [`SweepError::Journal`] when its first line is
+/// not a journal's.
+pub fn shard_of(path: &Path) -> Result<Option<Shard>, SweepError> {
+    use std::io::BufRead;
+    let file = match File::open(path) {
+        Ok(f) => f,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(None),
+        Err(source) => {
+            return Err(SweepError::Io {
+                path: path.to_path_buf(),
+                what: "cannot read the journal",
+                source,
+            });
+        }
+    };
+    let mut first = String::new();
+    std::io::BufReader::new(file.take(4096))
+        .read_line(&mut first)
+        .map_err(|source| SweepError::Io {
+            path: path.to_path_buf(),
+            what: "cannot read the journal",
+            source,
+        })?;
+    parse_first_line(first.trim_end())
+        .map(|(shard, _)| Some(shard))
+        .ok_or_else(|| SweepError::Journal {
+            path: path.to_path_buf(),
+            line: 1,
+            reason: "not a tumble sweep journal's first line".into(),
+        })
+}
+
 /// One field of a row: the `csv` crate writes floats in their shortest round-trip form (ryu),
 /// as `tumble simulate` writes trajectories.
 #[derive(serde::Serialize)]

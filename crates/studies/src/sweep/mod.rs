@@ -66,6 +66,9 @@
 //! one row per point in index order (`index`, axis values, metrics, `status`, `reason`),
 //! identical byte for byte whatever the threads, interruptions or shards. [`merge`] joins the
 //! folders of the `N` shards of a sweep into the folder an unsharded run writes.
+//! Each run on a folder appends a line to its compute record ([`compute`]: host, threads,
+//! wall time, points computed and failed) when it ends, completed or stopped; a merge
+//! gathers the records of its shards.
 //!
 //! The library never prints: progress goes to a callback, cancellation comes in through an
 //! `AtomicBool`.
@@ -73,11 +76,13 @@
 pub mod check;
 mod column;
 pub mod compare;
+pub mod compute;
 pub mod definition;
 mod draft;
 mod engine;
 pub mod file_error;
 pub mod journal;
+pub mod merge;
 pub mod metrics;
 mod overrides;
 mod raw;
@@ -88,10 +93,12 @@ use std::path::PathBuf;
 
 pub use check::{CheckReport, CheckSize, MetricChange, check_points, self_check};
 pub use compare::{MetricDifference, SweepDiff, diff, diff_folders, read_folder};
+pub use compute::{COMPUTE, ComputeRecord, ComputeRun, ComputeTotals};
 pub use definition::{Axis, AxisValues, Sampling, Spacing, SweepDefinition};
-pub use engine::{Progress, RunConfig, SweepReport, merge, run, run_point};
+pub use engine::{Progress, RunConfig, SweepReport, run, run_point};
 pub use file_error::{Origin, SweepFileError};
 pub use journal::{DEFINITION, JOURNAL, PointRow, RESULTS, Status, results_csv};
+pub use merge::{Unfinished, UnfinishedShard, merge};
 pub use metrics::{ColumnOp, Metric};
 pub use overrides::{Override, OverrideValue};
 
@@ -227,6 +234,16 @@ pub enum SweepError {
         /// What is wrong.
         reason: String,
     },
+    /// The compute record is damaged beyond a torn last line.
+    #[error("{}:{line}: damaged compute record: {reason}", path.display())]
+    Compute {
+        /// The record.
+        path: PathBuf,
+        /// 1-based line.
+        line: usize,
+        /// What is wrong.
+        reason: String,
+    },
     /// An invalid `--shard K/N`, or a folder written for another shard.
     #[error("shard {spec}: {reason}")]
     Shard {
@@ -238,12 +255,15 @@ pub enum SweepError {
     /// The self-check could not run.
     #[error("self-check: {0}")]
     SelfCheck(String),
-    /// Shard folders that do not make one complete sweep.
+    /// Shard folders that do not make one sweep.
     #[error("merge: {0}")]
     Merge(String),
     /// Two sweeps that cannot be compared point by point.
     #[error("diff: {0}")]
     Compare(String),
+    /// Shards of the sweep are missing or incomplete.
+    #[error("merge: {0}")]
+    Unfinished(Unfinished),
     /// The CSV writer failed (in memory; not expected).
     #[error("CSV: {0}")]
     Csv(String),

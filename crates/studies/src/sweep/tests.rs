@@ -584,9 +584,21 @@ fn three_shards_merge_into_the_unsharded_results() {
     )
     .unwrap();
     assert_eq!(again.computed, 0);
+    // The merged compute record holds every shard's run, and the resume adds its own.
+    assert_eq!(report.compute.runs.len(), 3);
+    assert_eq!(report.compute.totals().computed, 6);
+    assert_eq!(report.computed, 6);
+    assert_eq!(report.threads, 1);
+    assert_eq!(again.compute.runs.len(), 4);
+    assert_eq!(again.compute.totals().computed, 6);
     // Missing, repeated and incomplete shards are refused.
     let e = merge(&shards[..2], &dir.path().join("m2")).unwrap_err();
-    assert!(e.to_string().contains("missing shard 3/3"), "{e}");
+    assert!(
+        e.to_string().contains("1 of 3 shards not finished: 3/3")
+            && e.to_string()
+                .contains("shard 3/3: no folder given holds it"),
+        "{e}"
+    );
     let e = merge(
         &[shards[0].clone(), shards[0].clone(), shards[2].clone()],
         &dir.path().join("m3"),
@@ -598,7 +610,22 @@ fn three_shards_merge_into_the_unsharded_results() {
     let cut: Vec<&str> = text.lines().collect();
     std::fs::write(&journal, cut[..cut.len() - 1].join("\n") + "\n").unwrap();
     let e = merge(&shards, &dir.path().join("m4")).unwrap_err();
-    assert!(e.to_string().contains("incomplete (1 of 2 points)"), "{e}");
+    assert!(e.to_string().contains("shard 2/3: 1 of 2 points"), "{e}");
+    assert!(e.to_string().contains("--shard 2/3 --resume -o"), "{e}");
+    // Every unfinished shard is listed at once, a folder that never started among them.
+    let never = dir.path().join("never");
+    let e = merge(
+        &[shards[0].clone(), shards[1].clone(), never.clone()],
+        &dir.path().join("m5"),
+    )
+    .unwrap_err();
+    let SweepError::Unfinished(u) = &e else {
+        panic!("{e}")
+    };
+    let listed: Vec<String> = u.shards.iter().map(|s| s.shard.to_string()).collect();
+    assert_eq!(listed, ["2/3", "3/3"]);
+    assert_eq!(u.empty, [never]);
+    assert!(!dir.path().join("m5").join(JOURNAL).exists());
 }
 
 #[test]

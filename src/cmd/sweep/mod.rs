@@ -1,15 +1,17 @@
 //! `tumble sweep`: run a parameter sweep (a TOML sweep file, or the built-in hoop-tilt map)
 //! in parallel into an output folder; `tumble sweep merge` joins the folders of a sharded
-//! sweep.
+//! sweep; `tumble sweep slurm` writes the job script that runs a sharded sweep on a Slurm
+//! cluster ([`slurm`]).
 //!
 //! Two stages, as everywhere in the CLI: the file and the `--set` overrides become a validated
 //! [`SweepDefinition`] (every error names the key and its line, or the override) and the
 //! flags are checked before any point runs; then the library runs the points, appending each
-//! row to the folder's journal as it finishes, while a progress bar (only when stderr is a
-//! terminal) shows the count and an ETA.
+//! row to the folder's journal as it finishes, while a progress bar shows the count and an
+//! ETA when stderr is a terminal, and otherwise (a batch log) a line every `--progress-every`
+//! seconds does.
 //!
-//! Output folder: `sweep.toml` (the resolved definition) and `journal.csv` (the resumable
-//! state) from the start; at the end `results.csv` (one row per point in index order),
+//! Output folder: `sweep.toml` (the resolved definition), `journal.csv` (the resumable
+//! state) and `compute.csv` (a line per run on the folder) from the start; at the end `results.csv` (one row per point in index order),
 //! the map (`tilt-map.png`/`.svg` for a tilt metric, `<metric>-map.*` otherwise; a grid of
 //! two axes) and its slices (`tilt-slices.png`/`.svg`: the metric against the first axis for
 //! a few values of the second; one-axis grids get this plot alone), then `manifest.json`.
@@ -20,13 +22,14 @@
 //! (their rows say why); 1 for any error (nothing to run, a folder that holds another
 //! sweep, an unwritable output).
 
+mod progress;
+pub mod slurm;
+
 use std::fmt;
-use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
 use anyhow::{Result, bail};
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use tumble_studies::sweep::{
     self, CheckSize, Metric, Override, OverrideValue, Progress, RunConfig, Shard, SweepDefinition,
     SweepReport,
@@ -42,7 +45,8 @@ use crate::signals;
 #[derive(clap::Args, Debug)]
 #[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
 pub struct Args {
-    /// `merge DIR...`: join the folders of a sharded sweep.
+    /// `merge DIR...`: join the folders of a sharded sweep; `slurm SWEEP.toml --shards N`:
+    /// a Slurm job script for it.
     #[command(subcommand)]
     pub command: Option<Command>,
     /// A sweep file (TOML); without one, the built-in hoop-tilt map on `free-hoop`.
@@ -86,6 +90,29 @@ pub struct Args {
     /// summary warns and the exit status is 4.
     #[arg(long = "check-tolerance", value_name = "TOL", default_value_t = 1e-6)]
     pub check_tolerance: f64,
+    /// When stderr is not a terminal (a batch job's log), write a progress line (points done,
+    /// points per second, ETA) every this many seconds; 0 writes none. On a terminal a
+    /// progress bar shows the same.
+    #[arg(
+        long = "progress-every",
+        value_name = "SECONDS",
+        default_value_t = 30.0
+    )]
+    pub progress_every: f64,
+}
+
+/// The period of progress lines: `None` for 0.
+fn progress_period(seconds: f64) -> Result<Option<Duration>> {
+    if seconds == 0.0 {
+        return Ok(None);
+    }
+    match Duration::try_from_secs_f64(seconds) {
+        Ok(d) if d >= Duration::from_millis(10) => Ok(Some(d)),
+        _ => bail!(
+            "--progress-every {seconds}: expected a number of seconds, at least 0.01 (0 for no \
+             progress lines)"
+        ),
+    }
 }
 
 /// Subcommands of `tumble sweep`.
@@ -96,6 +123,9 @@ pub enum Command {
     Merge(MergeArgs),
     /// Compare two sweeps of the same grid: the largest difference of each metric, and where
     Diff(super::sweep_diff::DiffArgs),
+    /// Write a Slurm job script: a job array of N resumable shards and a merge job after
+    /// all of them
+    Slurm(slurm::SlurmArgs),
 }
 
 /// Flags of `tumble sweep merge`.
@@ -267,6 +297,7 @@ pub fn run(args: &Args) -> Result<()> {
     match &args.command {
         Some(Command::Merge(m)) => return merge(m),
         Some(Command::Diff(d)) => return super::sweep_diff::run(d),
+        Some(Command::Slurm(s)) => return slurm::run(s),
         None => {}
     }
     // Stage one: everything validated.
@@ -293,21 +324,23 @@ pub fn run(args: &Args) -> Result<()> {
         .clone()
         .unwrap_or_else(|| default_output(args.file.as_deref()));
 
+    let every = progress_period(args.progress_every)?;
     output::check_folder(&dir, &folder_files(&def))?;
     let check = CheckSettings::parse(&args.check, args.check_tolerance, threads)?;
     let _lock = output::lock_folder(&dir, args.break_lock)?;
 
     // Stage two: the points.
-    let bar = progress_bar();
-    let mut on_progress = |p: &Progress| update(&bar, p);
+    let reporter = progress::Reporter::new(every);
+    let mut on_progress = |p: &Progress| reporter.update(p);
     let config = RunConfig {
         threads,
         shard,
         resume: args.resume,
         cancel: Some(signals::flag()),
     };
-    let report = quiet_point_panics(|| sweep::run(&def, &dir, &config, &mut on_progress))?;
-    bar.finish_and_clear();
+    let report = quiet_point_panics(|| sweep::run(&def, &dir, &config, &mut on_progress));
+    reporter.finish();
+    let report = report?;
     if let Some(code) = signals::interrupted() {
         return Err(signals::Interrupted {
             code,
@@ -391,7 +424,18 @@ fn finish(
         def.plan.t_end
     );
     if command == "merge" {
+        let t = report.compute.totals();
         eprintln!("merged       {} points", report.rows.len());
+        eprintln!(
+            "compute      {} points computed in {} runs on {} host{}, {} wall in total, {:.1} \
+             thread-s",
+            t.computed,
+            t.runs,
+            t.hosts.len(),
+            if t.hosts.len() == 1 { "" } else { "s" },
+            seconds(t.wall_time),
+            t.thread_seconds
+        );
     } else {
         let rate = report
             .points_per_second()
@@ -487,7 +531,11 @@ fn merge(args: &MergeArgs) -> Result<()> {
         .unwrap_or_else(|| Path::new("out").join("merged"));
     output::check_folder(
         &out,
-        &["results.csv".to_string(), "manifest.json".to_string()],
+        &[
+            "results.csv".to_string(),
+            "manifest.json".to_string(),
+            sweep::COMPUTE.to_string(),
+        ],
     )?;
     let threads = std::thread::available_parallelism().map_or(1, usize::from);
     let check = CheckSettings::parse(&args.check, args.check_tolerance, threads)?;
@@ -502,36 +550,6 @@ fn seconds(d: Duration) -> String {
         format!("{:.1} ms", 1e3 * s)
     } else {
         format!("{s:.3} s")
-    }
-}
-
-/// A progress bar with an ETA on stderr when it is a terminal; hidden otherwise.
-fn progress_bar() -> ProgressBar {
-    if !std::io::stderr().is_terminal() {
-        return ProgressBar::hidden();
-    }
-    let bar = ProgressBar::with_draw_target(Some(0), ProgressDrawTarget::stderr());
-    if let Ok(style) = ProgressStyle::with_template(
-        "{wide_bar} {pos}/{len} points, {msg}{elapsed_precise}, ETA {eta_precise}",
-    ) {
-        bar.set_style(style);
-    }
-    bar
-}
-
-fn update(bar: &ProgressBar, p: &Progress) {
-    if bar.is_hidden() {
-        return;
-    }
-    if bar.length() != Some(p.total) {
-        bar.set_length(p.total);
-        // The ETA counts only this run's points.
-        bar.set_position(p.finished);
-        bar.reset_eta();
-    }
-    bar.set_position(p.finished);
-    if p.failed > 0 {
-        bar.set_message(format!("{} failed, ", p.failed));
     }
 }
 
@@ -558,7 +576,11 @@ fn quiet_point_panics<T>(f: impl FnOnce() -> T) -> T {
 
 /// The files a sweep writes into its folder (besides its journal), checked before it runs.
 fn folder_files(def: &SweepDefinition) -> Vec<String> {
-    let mut names = vec!["results.csv".to_string(), "manifest.json".to_string()];
+    let mut names = vec![
+        "results.csv".to_string(),
+        "manifest.json".to_string(),
+        sweep::COMPUTE.to_string(),
+    ];
     if let Some(metric) = def.metrics.first() {
         let stem = plot::sweep::plot_stem(metric);
         for kind in ["map", "slices"] {
