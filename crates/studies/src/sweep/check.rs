@@ -142,8 +142,21 @@ pub fn check_points(def: &SweepDefinition, size: CheckSize) -> Vec<u64> {
 pub fn tighter(step: StepControl) -> StepControl {
     match step {
         StepControl::Fixed(h) => StepControl::Fixed(h / 2.0),
-        StepControl::Tolerance(tol) => StepControl::Tolerance(tol / 100.0),
+        StepControl::Tolerance(tol) => StepControl::Tolerance(hundredth(tol)),
     }
+}
+
+/// `x / 100` as the decimal number it is written as: `1e-11` gives `1e-13` exactly as
+/// parsed, not `9.999999999999999e-14` (the shortest decimal of `x` with its exponent
+/// lowered by two).
+fn hundredth(x: f64) -> f64 {
+    let text = format!("{x:e}");
+    text.split_once('e')
+        .and_then(|(mantissa, exp)| {
+            let exp: i32 = exp.parse().ok()?;
+            format!("{mantissa}e{}", exp - 2).parse().ok()
+        })
+        .unwrap_or(x / 100.0)
 }
 
 /// Re-runs `points` of `def` at the tighter setting on `threads` workers and compares their
