@@ -613,3 +613,51 @@ fn a_sweep_manifest_says_how_it_was_made() {
     assert!(p["date"].as_str().is_some_and(|d| d.ends_with('Z')));
     assert!(p["host"].as_str().is_some_and(|h| !h.is_empty()));
 }
+
+#[test]
+fn the_sweep_file_sets_the_self_check_tolerance_and_the_flag_overrides_it() {
+    let tmp = TempDir::new().unwrap();
+    let d = tmp.path();
+    // gauss8 at 0.01 against 0.005: the tilt metrics move by ~1e-12, far above 1e-20.
+    let strict = small(0.5, 4).replace(
+        "tilt_threshold = 0.05",
+        "tilt_threshold = 0.05\ntolerance = 1e-20",
+    );
+    let file = write_sweep(d, "strict.sweep.toml", &strict);
+    let f = file.to_str().unwrap();
+    let out = tumble_in(d, &["sweep", f, "-o", "a", "--check", "4"]);
+    assert_eq!(out.status.code(), Some(4), "{}", stderr(&out));
+    assert!(
+        stderr(&out).contains("more than the tolerance 1.0e-20"),
+        "{}",
+        stderr(&out)
+    );
+    assert!(read(&d.join("a/sweep.toml")).contains("tolerance = 1e-20"));
+    let out = tumble_in(
+        d,
+        &[
+            "sweep",
+            f,
+            "-o",
+            "b",
+            "--check",
+            "4",
+            "--check-tolerance",
+            "1e-3",
+        ],
+    );
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    let bad = small(0.5, 4).replace(
+        "tilt_threshold = 0.05",
+        "tilt_threshold = 0.05\ntolerance = -1",
+    );
+    let file = write_sweep(d, "bad.sweep.toml", &bad);
+    let out = tumble_in(d, &["sweep", file.to_str().unwrap(), "-o", "c"]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(
+        stderr(&out).contains("metrics.tolerance"),
+        "{}",
+        stderr(&out)
+    );
+    assert!(!d.join("c").exists());
+}

@@ -87,9 +87,10 @@ pub struct Args {
     #[arg(long, value_name = "N|auto|off", default_value = "auto")]
     pub check: String,
     /// Largest change of a metric under the self-check accepted as converged; above it the
-    /// summary warns and the exit status is 4.
-    #[arg(long = "check-tolerance", value_name = "TOL", default_value_t = 1e-6)]
-    pub check_tolerance: f64,
+    /// summary warns and the exit status is 4 [default: the sweep file's `metrics.tolerance`,
+    /// else 1e-6].
+    #[arg(long = "check-tolerance", value_name = "TOL")]
+    pub check_tolerance: Option<f64>,
     /// When stderr is not a terminal (a batch job's log), write a progress line (points done,
     /// points per second, ETA) every this many seconds; 0 writes none. On a terminal a
     /// progress bar shows the same.
@@ -144,8 +145,8 @@ pub struct MergeArgs {
     #[arg(long, value_name = "N|auto|off", default_value = "auto")]
     pub check: String,
     /// As for `tumble sweep`.
-    #[arg(long = "check-tolerance", value_name = "TOL", default_value_t = 1e-6)]
-    pub check_tolerance: f64,
+    #[arg(long = "check-tolerance", value_name = "TOL")]
+    pub check_tolerance: Option<f64>,
 }
 
 /// The sweep finished but some points failed: exit status 3.
@@ -207,12 +208,24 @@ impl NotConverged {
 #[derive(Debug, Clone, Copy)]
 struct CheckSettings {
     size: CheckSize,
-    tolerance: f64,
+    /// `--check-tolerance`, if given.
+    tolerance: Option<f64>,
     threads: usize,
 }
 
+/// The self-check's tolerance when neither `--check-tolerance` nor `metrics.tolerance` is
+/// given.
+const DEFAULT_CHECK_TOLERANCE: f64 = 1e-6;
+
 impl CheckSettings {
-    fn parse(raw: &str, tolerance: f64, threads: usize) -> Result<Self> {
+    /// The tolerance for `def`: the flag, else the sweep file's, else the default.
+    fn tolerance(&self, def: &SweepDefinition) -> f64 {
+        self.tolerance
+            .or(def.check_tolerance)
+            .unwrap_or(DEFAULT_CHECK_TOLERANCE)
+    }
+
+    fn parse(raw: &str, tolerance: Option<f64>, threads: usize) -> Result<Self> {
         let size = match raw.trim() {
             "auto" => CheckSize::Auto,
             "off" => CheckSize::Off,
@@ -222,8 +235,10 @@ impl CheckSettings {
                 Err(_) => bail!("--check {raw}: expected a number of points, `auto` or `off`"),
             },
         };
-        if !(tolerance.is_finite() && tolerance > 0.0) {
-            bail!("--check-tolerance {tolerance}: must be finite and positive");
+        if let Some(t) = tolerance
+            && !(t.is_finite() && t > 0.0)
+        {
+            bail!("--check-tolerance {t}: must be finite and positive");
         }
         Ok(Self {
             size,
@@ -381,6 +396,7 @@ fn finish(
     } else {
         Vec::new()
     };
+    let tolerance = check.tolerance(def);
     // The self-check of a whole sweep: spread-out points again at a tighter setting.
     let self_check = if shard == Shard::ALL {
         let points = sweep::check_points(def, check.size);
@@ -400,7 +416,7 @@ fn finish(
         shard,
         command,
         &plots,
-        self_check.as_ref().map(|c| (c, check.tolerance)),
+        self_check.as_ref().map(|c| (c, tolerance)),
     ))?;
     output::write_whole(&dir.join("manifest.json"), text.as_bytes())?;
 
@@ -454,7 +470,7 @@ fn finish(
     );
     let converged = match &self_check {
         Some(c) => {
-            let ok = c.converged(check.tolerance);
+            let ok = c.converged(tolerance);
             eprintln!(
                 "self-check   metrics {} to {:.1e} ({} check points at {}){}",
                 if ok { "converged" } else { "changed" },
@@ -464,12 +480,12 @@ fn finish(
                 if ok {
                     String::new()
                 } else {
-                    format!(", more than the tolerance {:.1e}", check.tolerance)
+                    format!(", more than the tolerance {tolerance:.1e}")
                 }
             );
             for m in &c.changes {
                 if m.metric != Metric::MaxEnergyRelErr
-                    && (m.max_change > check.tolerance || m.undefined_in_one > 0)
+                    && (m.max_change > tolerance || m.undefined_in_one > 0)
                 {
                     eprintln!(
                         "warning      {}: changed by {:.2e}{}{}",
@@ -514,11 +530,7 @@ fn finish(
         .into());
     }
     if let Err(largest) = converged {
-        return Err(NotConverged {
-            largest,
-            tolerance: check.tolerance,
-        }
-        .into());
+        return Err(NotConverged { largest, tolerance }.into());
     }
     Ok(())
 }

@@ -217,6 +217,9 @@ pub struct SweepDefinition {
     pub metrics: Vec<Metric>,
     /// The tilt threshold of `time_tilt_exceeds` (rad).
     pub tilt_threshold: Option<f64>,
+    /// `metrics.tolerance`: the largest change of a metric the self-check accepts (the
+    /// command line's `--check-tolerance` overrides it; 1e-6 when neither is given).
+    pub check_tolerance: Option<f64>,
 }
 
 impl fmt::Debug for SweepDefinition {
@@ -230,6 +233,7 @@ impl fmt::Debug for SweepDefinition {
             .field("sampling", &self.sampling)
             .field("metrics", &self.metrics)
             .field("tilt_threshold", &self.tilt_threshold)
+            .field("check_tolerance", &self.check_tolerance)
             .finish()
     }
 }
@@ -403,6 +407,9 @@ impl SweepDefinition {
         let _ = writeln!(s, "record = [{}]", names.join(", "));
         if let Some(thr) = self.tilt_threshold {
             let _ = writeln!(s, "tilt_threshold = {}", float(thr));
+        }
+        if let Some(tol) = self.check_tolerance {
+            let _ = writeln!(s, "tolerance = {}", float(tol));
         }
         s
     }

@@ -49,6 +49,7 @@ pub(super) struct Draft {
     random: Option<DraftRandom>,
     record: Option<Src<Vec<Src<String>>>>,
     tilt_threshold: Option<Src<Num>>,
+    check_tolerance: Option<Src<Num>>,
 }
 
 impl Draft {
@@ -128,7 +129,7 @@ impl Draft {
                 r.seed.as_ref().map(num),
             )
         });
-        let (record, tilt_threshold) = match raw.metrics {
+        let (record, tilt_threshold, check_tolerance) = match raw.metrics {
             Some(m) => {
                 let m = m.into_inner();
                 (
@@ -137,9 +138,10 @@ impl Draft {
                         at: at(r.span()),
                     }),
                     m.tilt_threshold.as_ref().map(num),
+                    m.tolerance.as_ref().map(num),
                 )
             }
-            None => (None, None),
+            None => (None, None, None),
         };
         Ok(Draft {
             origin: origin.to_string(),
@@ -154,6 +156,7 @@ impl Draft {
             random,
             record,
             tilt_threshold,
+            check_tolerance,
         })
     }
 
@@ -226,6 +229,7 @@ impl Draft {
             }
             ["run", "t_end"] => self.t_end = Some(value),
             ["metrics", "tilt_threshold"] => self.tilt_threshold = Some(value),
+            ["metrics", "tolerance"] => self.check_tolerance = Some(value),
             ["random", which @ ("samples" | "seed")] => {
                 let Some(random) = &mut self.random else {
                     return Err(invalid(
@@ -303,7 +307,7 @@ impl Draft {
             _ => {
                 return Err(invalid(
                     "unknown key; --set takes a scene parameter (NAME or parameters.NAME), \
-                     run.integrator, run.dt, run.tol, run.t_end, metrics.tilt_threshold, \
+                     run.integrator, run.dt, run.tol, run.t_end, metrics.tilt_threshold, metrics.tolerance, \
                      random.samples, random.seed, or axes.NAME.count, axes.NAME.start, \
                      axes.NAME.end, axes.NAME.spacing, axes.NAME.values"
                         .into(),
@@ -337,6 +341,22 @@ impl Draft {
         let plan = self.run_plan(scene, &file_at)?;
         let metrics = self.metrics(scene)?;
         let tilt_threshold = self.tilt_threshold(&metrics, &file_at)?;
+        let check_tolerance = match &self.check_tolerance {
+            None => None,
+            Some(v) => {
+                let x = v.float("metrics.tolerance")?;
+                if !(x.is_finite() && x > 0.0) {
+                    return Err(SweepFileError::Invalid {
+                        at: v.at.clone(),
+                        key: "metrics.tolerance".into(),
+                        reason: format!(
+                            "{x}: the self-check's tolerance must be finite and positive"
+                        ),
+                    });
+                }
+                Some(x)
+            }
+        };
         let definition = SweepDefinition {
             origin: self.origin.clone(),
             scene,
@@ -349,6 +369,7 @@ impl Draft {
             },
             metrics,
             tilt_threshold,
+            check_tolerance,
         };
         self.check_size(&definition, &axis_origins, file_at)?;
         Ok(definition)

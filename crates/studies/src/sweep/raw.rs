@@ -50,4 +50,5 @@ pub(super) struct RawRandom {
 pub(super) struct RawMetrics {
     pub(super) record: Option<Spanned<Vec<Spanned<String>>>>,
     pub(super) tilt_threshold: Option<RawNumber>,
+    pub(super) tolerance: Option<RawNumber>,
 }
