@@ -60,8 +60,33 @@ pub struct Heatmap {
     pub markers: Vec<Marker>,
     /// Curves drawn over the cells.
     pub curves: Vec<Curve>,
+    /// Draw x (log-spaced grid values) on a base-10 logarithmic scale.
+    pub x_log: bool,
+    /// Draw y on a base-10 logarithmic scale.
+    pub y_log: bool,
     /// Width and height in pixels.
     pub size: (u32, u32),
+}
+
+/// Values of an axis as drawn: `log10 v` on a logarithmic axis (every `v > 0` there: log
+/// spacing needs a positive range).
+fn drawn(values: &[f64], log: bool) -> Vec<f64> {
+    if log {
+        values.iter().map(|v| v.log10()).collect()
+    } else {
+        values.to_vec()
+    }
+}
+
+/// Labels of a logarithmic axis drawn in `log10` units: `1e-4` at whole decades, two
+/// significant digits between them.
+pub(crate) fn log_labels(v: &f64) -> String {
+    let value = 10f64.powf(*v);
+    if (v - v.round()).abs() < 1e-9 {
+        format!("{:.0e}", 10f64.powf(v.round()))
+    } else {
+        format!("{value:.1e}")
+    }
 }
 
 /// Cell edges of grid values `v`: midpoints between neighbours, and as far again outside.
@@ -184,8 +209,10 @@ impl Figure for Heatmap {
         let bar_width = px(120);
         let (map_area, bar_area) = body.split_horizontally(w.saturating_sub(bar_width));
 
-        // The map.
-        let (xe, ye) = (edges(&self.xs), edges(&self.ys));
+        // The map, in drawn coordinates (log10 of the values on a log axis: cells of a
+        // log-spaced grid are then of equal size and the edges geometric means).
+        let (xs, ys) = (drawn(&self.xs, self.x_log), drawn(&self.ys, self.y_log));
+        let (xe, ye) = (edges(&xs), edges(&ys));
         let (Some(&x0), Some(&x1), Some(&y0), Some(&y1)) =
             (xe.first(), xe.last(), ye.first(), ye.last())
         else {
@@ -199,8 +226,22 @@ impl Figure for Heatmap {
             .x_label_area_size(px(48))
             .y_label_area_size(px(76))
             .build_cartesian_2d(x0..x1, y0..y1)?;
-        let x_fmt = label_for(nice_step(x1 - x0, 10));
-        let y_fmt = label_for(nice_step(y1 - y0, 8));
+        let x_linear = label_for(nice_step(x1 - x0, 10));
+        let y_linear = label_for(nice_step(y1 - y0, 8));
+        let x_fmt = |v: &f64| {
+            if self.x_log {
+                log_labels(v)
+            } else {
+                x_linear(v)
+            }
+        };
+        let y_fmt = |v: &f64| {
+            if self.y_log {
+                log_labels(v)
+            } else {
+                y_linear(v)
+            }
+        };
         chart
             .configure_mesh()
             .disable_mesh()
@@ -227,22 +268,22 @@ impl Figure for Heatmap {
             })
         });
         chart.draw_series(cells)?;
+        let to_x = |x: f64| if self.x_log { x.log10() } else { x };
+        let to_y = |y: f64| if self.y_log { y.log10() } else { y };
         for marker in &self.markers {
-            if !(x0..=x1).contains(&marker.x) {
+            let mx = to_x(marker.x);
+            if !(x0..=x1).contains(&mx) {
                 continue;
             }
             let dash = (y1 - y0) / 40.0;
             let dashes = (0..40).step_by(2).map(|k| {
                 let a = y0 + k as f64 * dash;
-                PathElement::new(
-                    vec![(marker.x, a), (marker.x, a + dash)],
-                    WHITE.stroke_width(px(2)),
-                )
+                PathElement::new(vec![(mx, a), (mx, a + dash)], WHITE.stroke_width(px(2)))
             });
             chart.draw_series(dashes)?;
             chart.draw_series(std::iter::once(Text::new(
                 marker.label.clone(),
-                (marker.x, y1),
+                (mx, y1),
                 font(15.0 * s)
                     .color(&WHITE)
                     .pos(Pos::new(HPos::Left, VPos::Top)),
@@ -252,7 +293,7 @@ impl Figure for Heatmap {
             let inside: Vec<(f64, f64)> = curve
                 .points
                 .iter()
-                .copied()
+                .map(|&(x, y)| (to_x(x), to_y(y)))
                 .filter(|&(x, y)| (x0..=x1).contains(&x) && (y0..=y1).contains(&y))
                 .collect();
             // Dashes: every other pair of consecutive points, in runs of four.
@@ -364,8 +405,23 @@ mod tests {
                 label: "equilibrium".into(),
                 points: (0..50).map(|k| (1.0 + 0.06 * f64::from(k), 0.2)).collect(),
             }],
+            x_log: false,
+            y_log: false,
             size: (700, 500),
         }
+    }
+
+    #[test]
+    fn a_log_axis_is_drawn_in_decades_with_cells_of_equal_size() {
+        let ys = [1e-6, 1e-5, 1e-4, 1e-3];
+        let drawn_ys = drawn(&ys, true);
+        let e = edges(&drawn_ys);
+        let widths: Vec<f64> = e.windows(2).map(|w| w[1] - w[0]).collect();
+        assert!(widths.iter().all(|w| (w - 1.0).abs() < 1e-12), "{widths:?}");
+        assert_eq!(log_labels(&-4.0), "1e-4");
+        assert_eq!(log_labels(&0.0), "1e0");
+        assert_eq!(log_labels(&-3.5), "3.2e-4");
+        assert_eq!(drawn(&ys, false), ys.to_vec());
     }
 
     #[test]

@@ -1,7 +1,7 @@
 //! Slices of a map: the value against the x parameter along a few rows of the grid, as line
 //! series in one panel ([`super::xy`]).
 
-use super::xy::{Panel, Series, StackedFigure};
+use super::xy::{Panel, Scale, Series, StackedFigure};
 
 /// One row of the grid: its label (`alpha0 = 0.5 rad`) and its `(x, value)` points; points
 /// without a value (failed) are left out.
@@ -36,9 +36,13 @@ pub fn figure(
     subtitle: String,
     x_label: &str,
     value_label: &str,
+    x_log: bool,
     slices: &[Slice],
 ) -> StackedFigure {
     let mut panel = Panel::new(x_label, value_label);
+    if x_log {
+        panel.x_scale = Scale::Log;
+    }
     for s in slices {
         let points = s
             .points
@@ -74,6 +78,7 @@ mod tests {
             String::new(),
             "x",
             "y",
+            false,
             &[Slice {
                 label: "a".into(),
                 points: vec![

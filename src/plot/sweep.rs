@@ -103,6 +103,7 @@ pub(crate) fn draw_plots(
             subtitle,
             &x_label,
             &metric_label(metric),
+            x_axis.is_log(),
             &[slice],
         );
         for ext in ["png", "svg"] {
@@ -135,6 +136,8 @@ pub(crate) fn draw_plots(
             range: None,
             markers,
             curves,
+            x_log: x_axis.is_log(),
+            y_log: y_axis.is_log(),
             size: (1000, 720),
         };
         for ext in ["png", "svg"] {
@@ -149,7 +152,11 @@ pub(crate) fn draw_plots(
             label: format!(
                 "{} = {}{}",
                 y_axis.parameter,
-                round_for_label(ys[j]),
+                if y_axis.is_log() {
+                    plot::heatmap::log_labels(&ys[j].log10())
+                } else {
+                    round_for_label(ys[j])
+                },
                 if y_axis.unit.is_empty() {
                     String::new()
                 } else {
@@ -169,6 +176,7 @@ pub(crate) fn draw_plots(
         subtitle,
         &x_label,
         &metric_label(metric),
+        x_axis.is_log(),
         &slices,
     );
     for ext in ["png", "svg"] {

@@ -61,6 +61,23 @@ pub struct Axis {
 }
 
 impl Axis {
+    /// Whether the axis is drawn on a logarithmic scale: a `log`-spaced range, or listed
+    /// values that are positive and spaced by equal ratios (to 1e-9).
+    #[must_use]
+    pub fn is_log(&self) -> bool {
+        match &self.values {
+            AxisValues::Range { spacing, .. } => *spacing == Spacing::Log,
+            AxisValues::List(v) => {
+                v.len() >= 3 && v.iter().all(|&x| x > 0.0) && v.windows(2).all(|w| w[1] > w[0]) && {
+                    let ratio = v[1] / v[0];
+                    ratio > 1.5
+                        && v.windows(2)
+                            .all(|w| ((w[1] / w[0]) / ratio - 1.0).abs() < 1e-9)
+                }
+            }
+        }
+    }
+
     /// Number of grid values (`None` for a range of random samples).
     #[must_use]
     pub fn count(&self) -> Option<u64> {
