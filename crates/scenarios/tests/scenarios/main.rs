@@ -6,6 +6,7 @@ mod support;
 mod coriolis_drop;
 mod driven_hoop;
 mod free_hoop;
+mod fuzz;
 mod free_hoop_euler;
 mod heavy_top_euler;
 mod lagrangian_ad;

@@ -383,7 +383,8 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<(SweepDefinition, SweepRepo
         });
     }
     let mut rows: BTreeMap<u64, PointRow> = BTreeMap::new();
-    let mut seen: Vec<Option<PathBuf>> = Vec::new();
+    // Shard index → its folder (a map: a damaged journal may claim any shard count).
+    let mut seen: BTreeMap<u64, PathBuf> = BTreeMap::new();
     let mut count = None;
     for dir in dirs {
         let other = read_text(dir)?;
@@ -405,15 +406,22 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<(SweepDefinition, SweepRepo
                 first.display()
             )));
         }
-        seen.resize(n as usize, None);
-        if let Some(previous) = &seen[(shard.index - 1) as usize] {
+        if n > dirs.len() as u64 {
+            return Err(SweepError::Merge(format!(
+                "{} is shard {shard}: {n} shards to merge, but {} folder{} given",
+                dir.display(),
+                dirs.len(),
+                if dirs.len() == 1 { " was" } else { "s were" }
+            )));
+        }
+        if let Some(previous) = seen.get(&shard.index) {
             return Err(SweepError::Merge(format!(
                 "{} and {} are both shard {shard}",
                 previous.display(),
                 dir.display()
             )));
         }
-        seen[(shard.index - 1) as usize] = Some(dir.clone());
+        seen.insert(shard.index, dir.clone());
         let finished = contents.rows.len() as u64;
         if finished != shard.size(def.points()) {
             return Err(SweepError::Merge(format!(
@@ -427,11 +435,11 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<(SweepDefinition, SweepRepo
         }
         rows.extend(contents.rows);
     }
-    let missing: Vec<String> = seen
-        .iter()
-        .enumerate()
-        .filter(|(_, d)| d.is_none())
-        .map(|(k, _)| format!("{}/{}", k + 1, seen.len()))
+    // At most as many shards as folders (checked above), each seen at most once.
+    let n = count.unwrap_or(1);
+    let missing: Vec<String> = (1..=n)
+        .filter(|k| !seen.contains_key(k))
+        .map(|k| format!("{k}/{n}"))
         .collect();
     if !missing.is_empty() {
         return Err(SweepError::Merge(format!(
