@@ -192,5 +192,4 @@ mod tests {
             let _ = parse_angle(&text);
         }
     }
-
 }

@@ -58,7 +58,12 @@ pub struct Args {
     pub t_end: Option<f64>,
     /// Write every N-th step (the first row is always the initial state, the last the final
     /// state).
-    #[arg(long, value_name = "N", conflicts_with_all = ["at", "output_dt"])]
+    #[arg(
+        long,
+        value_name = "N",
+        conflicts_with_all = ["at", "output_dt"],
+        allow_negative_numbers = true
+    )]
     pub every: Option<u64>,
     /// Write rows at exactly these times (comma-separated, increasing, in [0, T]), from the
     /// integrator's dense output, and the final state; the steps are the same as without.
@@ -78,7 +83,12 @@ pub struct Args {
     pub max_steps: u64,
     /// Warn (on stderr and in the provenance file) when the largest relative energy error of
     /// the run exceeds this: the step does not resolve the motion.
-    #[arg(long = "energy-warn", value_name = "REL", default_value_t = 1e-6)]
+    #[arg(
+        long = "energy-warn",
+        value_name = "REL",
+        default_value_t = 1e-6,
+        allow_negative_numbers = true
+    )]
     pub energy_warn: f64,
     /// Refuse a run whose CSV is estimated to be larger than this many bytes (suffixes k, M, G).
     #[arg(long = "max-output", value_name = "BYTES", default_value = "10G")]
@@ -212,6 +222,12 @@ fn setup(args: &Args) -> Result<Setup> {
         .resolve(scene.info())
         .map_err(|e| anyhow::anyhow!("{}: {}", scene.info().name, flag_words(&e)))?;
     check_budget(&plan, scene.info(), args)?;
+    if !(args.energy_warn >= 0.0) {
+        bail!(
+            "--energy-warn {}: must be a relative energy error >= 0",
+            number(args.energy_warn)
+        );
+    }
     if !args.allow_coarse_step {
         check_resolution(scene, &params, &plan)?;
     }

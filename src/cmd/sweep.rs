@@ -84,7 +84,12 @@ pub struct Args {
     pub check: String,
     /// Largest change of a metric under the self-check accepted as converged; above it the
     /// summary warns and the exit status is 4.
-    #[arg(long = "check-tolerance", value_name = "TOL", default_value_t = 1e-6)]
+    #[arg(
+        long = "check-tolerance",
+        value_name = "TOL",
+        default_value_t = 1e-6,
+        allow_negative_numbers = true
+    )]
     pub check_tolerance: f64,
 }
 
@@ -114,7 +119,12 @@ pub struct MergeArgs {
     #[arg(long, value_name = "N|auto|off", default_value = "auto")]
     pub check: String,
     /// As for `tumble sweep`.
-    #[arg(long = "check-tolerance", value_name = "TOL", default_value_t = 1e-6)]
+    #[arg(
+        long = "check-tolerance",
+        value_name = "TOL",
+        default_value_t = 1e-6,
+        allow_negative_numbers = true
+    )]
     pub check_tolerance: f64,
 }
 

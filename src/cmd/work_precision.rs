@@ -9,7 +9,7 @@
 use std::fmt::Write as _;
 use std::path::PathBuf;
 
-use anyhow::{Context, Result, bail};
+use anyhow::{Result, bail};
 use tumble_integrators::registry;
 use tumble_scenarios::{Params, Scene, StepControl};
 use tumble_studies::work_precision::{

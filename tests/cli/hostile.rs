@@ -11,7 +11,7 @@ mod scene_files;
 mod signals;
 mod sweep_files;
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
@@ -182,10 +182,7 @@ pub fn run_table(cases: &[Case]) {
             .chunks(cases.len().div_ceil(4).max(1))
             .map(|chunk| s.spawn(move || chunk.iter().filter_map(check).collect::<Vec<_>>()))
             .collect();
-        chunks
-            .into_iter()
-            .flat_map(|h| h.join().unwrap())
-            .collect()
+        chunks.into_iter().flat_map(|h| h.join().unwrap()).collect()
     });
     assert!(
         failures.is_empty(),
@@ -194,11 +191,6 @@ pub fn run_table(cases: &[Case]) {
         cases.len(),
         failures.join("\n")
     );
-}
-
-/// The repository's file `rel`, as an absolute path.
-pub fn repo_file(rel: &str) -> PathBuf {
-    crate::support::root().join(rel)
 }
 
 /// Every table has distinct case names and the suite holds at least 100 cases.
@@ -212,7 +204,10 @@ fn the_suite_holds_at_least_100_distinct_cases() {
         journals::MORE,
         meshes::CASES,
     ];
-    let mut names: Vec<&str> = tables.iter().flat_map(|t| t.iter().map(|c| c.name)).collect();
+    let mut names: Vec<&str> = tables
+        .iter()
+        .flat_map(|t| t.iter().map(|c| c.name))
+        .collect();
     let n = names.len() + signals::CASES;
     names.sort_unstable();
     let before = names.len();

@@ -193,6 +193,10 @@ fn max_seconds_bounds_every_run_even_of_a_long_horizon() {
         err.contains("was cut after 1.2 s of wall time") && err.contains("--max-seconds"),
         "{err}"
     );
-    assert!(start.elapsed().as_secs_f64() < 20.0, "{:?}", start.elapsed());
+    assert!(
+        start.elapsed().as_secs_f64() < 20.0,
+        "{:?}",
+        start.elapsed()
+    );
     assert!(!tmp.path().join("wp").exists());
 }

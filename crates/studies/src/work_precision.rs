@@ -346,7 +346,7 @@ pub fn reference_within(
     };
     let run = |name: &str, c: StepControl| {
         let mut plan = plan(info, name, c, t_end, Observe::Ends)?;
-        if let Some(seconds) = seconds {
+        if let Some(seconds) = seconds.filter(|s| s.is_finite()) {
             plan = plan.with_deadline(seconds);
         }
         final_state(scene, params, &plan).map(|(s, _)| s)
@@ -468,8 +468,13 @@ pub fn ladder(
         t_end: Some(config.t_end),
         ..RunOptions::default()
     }
-    .resolve(info)?
-    .with_deadline(config.max_run_seconds * Config::CUT_FACTOR);
+    .resolve(info)?;
+    let limit = config.max_run_seconds * Config::CUT_FACTOR;
+    let base = if limit.is_finite() {
+        base.with_deadline(limit)
+    } else {
+        base
+    };
     let method = base.method;
     let order = match method.order {
         Order::Finite(p) => Some(p),
@@ -503,9 +508,7 @@ pub fn ladder(
             }
         }
     };
-    let cut = |out: &Ladder| {
-        out.failures.last().is_some_and(|f| f.time_limit)
-    };
+    let cut = |out: &Ladder| out.failures.last().is_some_and(|f| f.time_limit);
     let Some(p) = order else {
         // The exact flow: one rung at the scene's default step.
         let h = refine_step(info.default_step, t_end);
@@ -514,7 +517,10 @@ pub fn ladder(
             out.rungs.push(r);
         }
         out.stop = if cut(&out) {
-            format!("a run was cut at {} s", config.max_run_seconds * Config::CUT_FACTOR)
+            format!(
+                "a run was cut at {} s",
+                config.max_run_seconds * Config::CUT_FACTOR
+            )
         } else {
             "exact flow: one rung".into()
         };

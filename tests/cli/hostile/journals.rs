@@ -14,7 +14,10 @@ const FILES: &[(&str, super::Content)] = &[("s.sweep.toml", Text(SWEEP))];
 
 /// Runs the sweep into `sw`.
 fn finished(dir: &Path) {
-    let (code, err) = run_in(dir, &["sweep", "s.sweep.toml", "-o", "sw", "--check", "off"]);
+    let (code, err) = run_in(
+        dir,
+        &["sweep", "s.sweep.toml", "-o", "sw", "--check", "off"],
+    );
     assert_eq!(code, Some(0), "{err}");
 }
 
@@ -39,7 +42,9 @@ fn empty(dir: &Path) {
     damaged(dir, |_| String::new());
 }
 fn foreign_first_line(dir: &Path) {
-    damaged(dir, |t| t.replacen(first_line(t), "index,omega0,max_tilt", 1));
+    damaged(dir, |t| {
+        t.replacen(first_line(t), "index,omega0,max_tilt", 1)
+    });
 }
 fn no_header(dir: &Path) {
     damaged(dir, |t| format!("{}\n", first_line(t)));
@@ -64,7 +69,7 @@ fn binary(dir: &Path) {
     std::fs::write(dir.join("sw/journal.csv"), b"\xff\xfe\x00\x01\n\x80\x81\n").unwrap();
 }
 fn garbage_row(dir: &Path) {
-    damaged(dir, |t| t.clone() + "banana,split,yes,no,maybe\n");
+    damaged(dir, |t| format!("{t}banana,split,yes,no,maybe\n"));
 }
 fn point_out_of_range(dir: &Path) {
     damaged(dir, |t| {
@@ -109,7 +114,10 @@ fn journal_a_folder(dir: &Path) {
 }
 fn two_copies(dir: &Path) {
     finished(dir);
-    let (code, err) = run_in(dir, &["sweep", "s.sweep.toml", "-o", "sw2", "--check", "off"]);
+    let (code, err) = run_in(
+        dir,
+        &["sweep", "s.sweep.toml", "-o", "sw2", "--check", "off"],
+    );
     assert_eq!(code, Some(0), "{err}");
 }
 fn foreign_results(dir: &Path) {
@@ -119,7 +127,16 @@ fn foreign_results(dir: &Path) {
 fn incomplete_shard(dir: &Path) {
     let (code, err) = run_in(
         dir,
-        &["sweep", "s.sweep.toml", "-o", "k1", "--shard", "1/2", "--check", "off"],
+        &[
+            "sweep",
+            "s.sweep.toml",
+            "-o",
+            "k1",
+            "--shard",
+            "1/2",
+            "--check",
+            "off",
+        ],
     );
     assert_eq!(code, Some(0), "{err}");
     let path = dir.join("k1/journal.csv");
@@ -128,7 +145,15 @@ fn incomplete_shard(dir: &Path) {
     std::fs::write(path, format!("{}\n{}\n", lines[0], lines[1])).unwrap();
 }
 
-const RESUME: &[&str] = &["sweep", "s.sweep.toml", "-o", "sw", "--resume", "--check", "off"];
+const RESUME: &[&str] = &[
+    "sweep",
+    "s.sweep.toml",
+    "-o",
+    "sw",
+    "--resume",
+    "--check",
+    "off",
+];
 const MERGE: &[&str] = &["sweep", "merge", "sw", "-o", "merged", "--check", "off"];
 
 macro_rules! journal_cases {
@@ -145,40 +170,70 @@ macro_rules! journal_cases {
 }
 
 const DAMAGED: &[Case] = journal_cases![
-    "journal empty", empty, ["journal.csv", "line 1"];
-    "journal without its first line", foreign_first_line, ["journal.csv", "line 1", "not a tumble sweep journal"];
-    "journal without a header", no_header, ["journal.csv", "line 2"];
-    "journal of other columns", wrong_header, ["journal.csv", "line 2", "colour"];
+    "journal empty", empty, ["journal.csv:1"];
+    "journal without its first line", foreign_first_line, ["journal.csv:1", "not a tumble sweep journal"];
+    "journal without a header", no_header, ["journal.csv:2"];
+    "journal of other columns", wrong_header, ["journal.csv:2", "colour"];
     "journal of another definition", other_fingerprint, ["another definition"];
     "journal binary", binary, ["journal.csv", "UTF-8"];
-    "journal with a garbage row", garbage_row, ["journal.csv", "line 6"];
+    "journal with a garbage row", garbage_row, ["journal.csv:6"];
     "journal with a point out of range", point_out_of_range, ["journal.csv", "99"];
     "journal with a point twice", point_twice, ["journal.csv", "twice"];
     "journal of shard 1/4000000000000", huge_shard_count, ["4000000000000"];
-    "journal of shard 0/0", shard_zero, ["journal.csv", "line 1"];
+    "journal of shard 0/0", shard_zero, ["journal.csv:1"];
     "journal missing", no_journal, ["journal"];
     "journal a folder", journal_a_folder, ["journal"];
 ];
 
 const OTHERS: &[Case] = &[
-    Case::new("sweep definition edited, then merge", MERGE, 1, &["sweep.toml", "resolved form"])
-        .files(FILES)
-        .setup(edited_definition),
-    Case::new("one folder twice in a merge", &["sweep", "merge", "sw", "sw", "-o", "merged"], 1, &["both shard 1/1"])
-        .files(FILES)
-        .setup(finished),
-    Case::new("two copies of shard 1/1 in a merge", &["sweep", "merge", "sw", "sw2", "-o", "merged"], 1, &["both shard 1/1"])
-        .files(FILES)
-        .setup(two_copies),
-    Case::new("an incomplete shard in a merge", &["sweep", "merge", "k1", "-o", "merged"], 1, &["1/2"])
-        .files(FILES)
-        .setup(incomplete_shard),
-    Case::new("diff against foreign results", &["sweep", "diff", "sw", "sw2"], 1, &["results.csv"])
-        .files(FILES)
-        .setup(foreign_results),
-    Case::new("resume into a folder of another sweep", &["sweep", "-o", "sw", "--resume", "--check", "off"], 1, &["sw"])
-        .files(FILES)
-        .setup(finished),
+    Case::new(
+        "sweep definition edited, then merge",
+        MERGE,
+        1,
+        &["sw", "different sweep", "another definition"],
+    )
+    .files(FILES)
+    .setup(edited_definition),
+    Case::new(
+        "one folder twice in a merge",
+        &["sweep", "merge", "sw", "sw", "-o", "merged"],
+        1,
+        &["both shard 1/1"],
+    )
+    .files(FILES)
+    .setup(finished),
+    Case::new(
+        "two copies of shard 1/1 in a merge",
+        &["sweep", "merge", "sw", "sw2", "-o", "merged"],
+        1,
+        &["both shard 1/1"],
+    )
+    .files(FILES)
+    .setup(two_copies),
+    Case::new(
+        "an incomplete shard in a merge",
+        &["sweep", "merge", "k1", "-o", "merged"],
+        1,
+        &["1/2"],
+    )
+    .files(FILES)
+    .setup(incomplete_shard),
+    Case::new(
+        "diff against foreign results",
+        &["sweep", "diff", "sw", "sw2"],
+        1,
+        &["results.csv"],
+    )
+    .files(FILES)
+    .setup(foreign_results),
+    Case::new(
+        "resume into a folder of another sweep",
+        &["sweep", "-o", "sw", "--resume", "--check", "off"],
+        1,
+        &["sw"],
+    )
+    .files(FILES)
+    .setup(finished),
 ];
 
 pub const CASES: &[Case] = DAMAGED;

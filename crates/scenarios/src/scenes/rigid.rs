@@ -414,9 +414,11 @@ impl Scene for DzhanibekovScene {
     }
 
     fn initial_rate(&self, params: &Params) -> Option<Result<f64, SceneError>> {
-        Some(params.get("perturbation").and_then(|eps| {
-            Ok(params.get("spin")?.abs() * (1.0 + 2.0 * eps * eps).sqrt())
-        }))
+        Some(
+            params
+                .get("perturbation")
+                .and_then(|eps| Ok(params.get("spin")?.abs() * (1.0 + 2.0 * eps * eps).sqrt())),
+        )
     }
 
     fn simulate(
