@@ -338,7 +338,7 @@ impl<'a> Driver<'a> {
     fn check_deadline<S: State>(&self, step: u64, t: f64, state: &S) -> Result<(), Error> {
         match self.deadline {
             Some((at, seconds))
-                if step % Self::CLOCK_EVERY == 0 && std::time::Instant::now() >= at =>
+                if step.is_multiple_of(Self::CLOCK_EVERY) && std::time::Instant::now() >= at =>
             {
                 Err(Error::TimeLimit {
                     t,
