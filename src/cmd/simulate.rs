@@ -241,12 +241,17 @@ fn setup(args: &Args) -> Result<Setup> {
 
 /// Refuses a fixed step that turns the initial state's fastest rotation
 /// ([`Scene::initial_rate`]) by more than [`MAX_ANGLE_PER_STEP`] a step, with the bound and a
-/// step that resolves it. Adaptive runs choose their own steps.
+/// step that resolves it. Adaptive runs choose their own steps; the exact flow has no step
+/// error.
 fn check_resolution(scene: &dyn Scene, params: &Params, plan: &RunPlan) -> Result<()> {
     let info = scene.info();
     let StepControl::Fixed(h) = plan.step else {
         return Ok(());
     };
+    if plan.method.properties.exact {
+        // The exact flow has no step error: its step only spaces the rows.
+        return Ok(());
+    }
     let Some(rate) = scene.initial_rate(params) else {
         return Ok(());
     };
@@ -255,7 +260,9 @@ fn check_resolution(scene: &dyn Scene, params: &Params, plan: &RunPlan) -> Resul
     if angle > MAX_ANGLE_PER_STEP {
         let suggested = round_down(0.5 * MAX_ANGLE_PER_STEP / rate);
         bail!(
-            "{}: dt = {} does not resolve the initial rotation: |ω| ≈ {} rad/s turns {} rad a              step, above the bound h·|ω| ≤ {MAX_ANGLE_PER_STEP}; give --dt {} or smaller (or an              adaptive integrator, --integrator dop853), or pass --allow-coarse-step to run anyway",
+            "{}: dt = {} does not resolve the initial rotation: |ω| ≈ {} rad/s turns {} rad a \
+             step, above the bound h·|ω| ≤ {MAX_ANGLE_PER_STEP}; give --dt {} or smaller (or an \
+             adaptive integrator, --integrator dop853), or pass --allow-coarse-step to run anyway",
             info.name,
             number(h),
             significant(rate),
@@ -273,9 +280,13 @@ fn round_down(x: f64) -> f64 {
     if r > 0.0 && r.is_finite() { r } else { x }
 }
 
-/// `x` to three significant digits.
+/// `x` to three significant digits (in exponent form outside `[1e-3, 1e7)`).
 fn significant(x: f64) -> String {
-    format!("{}", format!("{x:.3e}").parse::<f64>().unwrap_or(x))
+    if (1e-3..1e7).contains(&x.abs()) {
+        format!("{}", format!("{x:.2e}").parse::<f64>().unwrap_or(x))
+    } else {
+        format!("{x:.2e}")
+    }
 }
 
 /// Parses a byte count with an optional suffix: `1000`, `500k`, `20M`, `10G`.

@@ -142,7 +142,9 @@ pub fn run(args: &Args) -> Result<()> {
             seconds,
             ..
         }) => anyhow::anyhow!(
-            "{}: the reference run over [0, {t_end}] s was cut after {seconds} s of wall time at              t = {t} s ({REFERENCE_FACTOR} × --max-seconds); shorten --t-end or raise              --max-seconds",
+            "{}: the reference run over [0, {t_end}] s was cut after {seconds} s of wall time at \
+             t = {t} s ({REFERENCE_FACTOR} × --max-seconds); shorten --t-end or raise \
+             --max-seconds",
             info.name
         ),
         e => anyhow::Error::new(e).context(format!("{}: the reference run failed", info.name)),

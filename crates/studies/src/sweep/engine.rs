@@ -411,14 +411,6 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<(SweepDefinition, SweepRepo
                 first.display()
             )));
         }
-        if n > dirs.len() as u64 {
-            return Err(SweepError::Merge(format!(
-                "{} is shard {shard}: {n} shards to merge, but {} folder{} given",
-                dir.display(),
-                dirs.len(),
-                if dirs.len() == 1 { " was" } else { "s were" }
-            )));
-        }
         if let Some(previous) = seen.get(&shard.index) {
             return Err(SweepError::Merge(format!(
                 "{} and {} are both shard {shard}",
@@ -440,12 +432,17 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<(SweepDefinition, SweepRepo
         }
         rows.extend(contents.rows);
     }
-    // At most as many shards as folders (checked above), each seen at most once.
+    // The first few missing shards (a damaged journal may claim any number of them).
     let n = count.unwrap_or(1);
-    let missing: Vec<String> = (1..=n)
+    let absent = n - seen.len() as u64;
+    let mut missing: Vec<String> = (1..=n)
         .filter(|k| !seen.contains_key(k))
+        .take(10)
         .map(|k| format!("{k}/{n}"))
         .collect();
+    if absent > missing.len() as u64 {
+        missing.push(format!("and {} more", absent - missing.len() as u64));
+    }
     if !missing.is_empty() {
         return Err(SweepError::Merge(format!(
             "missing shard{} {}",
