@@ -314,7 +314,6 @@ fn bad_output_times_are_refused_before_any_work() {
         (None, Some(-1.0), None, "output_dt"),
         (None, Some(0.0), None, "output_dt"),
         (Some(vec![1.0]), Some(0.1), None, "output_dt"),
-        (Some(vec![1.0]), None, Some("lgvi"), "at"),
     ];
     for (at, output_dt, integrator, option) in bad {
         let opts = RunOptions {
