@@ -62,17 +62,54 @@ pub fn check_folder(dir: &Path, names: &[String]) -> Result<()> {
     Ok(())
 }
 
-/// Creates the output folder `dir` if needed and locks it for this process (see
-/// [`tumble_output::FolderLock`]); the lock is released when the returned guard is dropped.
+/// Creates the output folder `dir` if needed, locks it for this process (see
+/// [`tumble_output::FolderLock`]) and removes the temporary files a killed run left in it; the
+/// lock is released when the returned guard is dropped.
 ///
 /// # Errors
 /// The folder cannot be created, or another live tumble process holds it.
-pub fn lock_folder(dir: &Path, break_lock: bool) -> Result<tumble_output::FolderLock> {
+pub fn lock_folder(dir: &Path, break_lock: bool) -> Result<FolderGuard> {
+    let created = !dir.exists();
     std::fs::create_dir_all(dir)
         .map_err(|e| anyhow::anyhow!("{}: cannot create the output folder: {e}", dir.display()))?;
     let since = humantime::format_rfc3339_seconds(std::time::SystemTime::now()).to_string();
     let command = std::env::args().collect::<Vec<_>>().join(" ");
-    Ok(tumble_output::FolderLock::acquire(
-        dir, &since, &command, break_lock,
-    )?)
+    let lock = FolderGuard {
+        lock: Some(tumble_output::FolderLock::acquire(
+            dir, &since, &command, break_lock,
+        )?),
+        created: created.then(|| dir.to_path_buf()),
+    };
+    // Nobody else writes here now: temporary files are what a killed run left.
+    let removed = tumble_output::remove_stale_temp_files(dir).map_err(|e| {
+        anyhow::anyhow!(
+            "{}: cannot remove the temporary files an interrupted run left: {e}",
+            dir.display()
+        )
+    })?;
+    for path in removed {
+        eprintln!(
+            "removed {} (a temporary file an interrupted run left)",
+            path.display()
+        );
+    }
+    Ok(lock)
+}
+
+/// A locked output folder: the lock is released when dropped, and a folder this process created
+/// is removed again if the command left it empty (it failed before writing anything).
+#[derive(Debug)]
+pub struct FolderGuard {
+    lock: Option<tumble_output::FolderLock>,
+    created: Option<std::path::PathBuf>,
+}
+
+impl Drop for FolderGuard {
+    fn drop(&mut self) {
+        drop(self.lock.take());
+        if let Some(dir) = &self.created {
+            // Fails, as it should, unless the folder is empty.
+            let _ = std::fs::remove_dir(dir);
+        }
+    }
 }

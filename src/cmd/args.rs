@@ -121,4 +121,75 @@ mod tests {
             "left to the domain check"
         );
     }
+
+    use proptest::prelude::*;
+
+    /// `PROPTEST_CASES` cases when set, else `default_cases`.
+    fn proptest_config(default_cases: u32) -> ProptestConfig {
+        let cases = std::env::var("PROPTEST_CASES")
+            .ok()
+            .and_then(|v| v.parse().ok())
+            .unwrap_or(default_cases);
+        ProptestConfig::with_cases(cases)
+    }
+
+    /// The valid angles of the seed corpus `fuzz/corpus/angle/angles.txt`, one a line.
+    fn corpus() -> Vec<String> {
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/fuzz/corpus/angle/angles.txt");
+        std::fs::read_to_string(path)
+            .unwrap()
+            .lines()
+            .map(str::to_string)
+            .collect()
+    }
+
+    #[test]
+    fn fuzz_corpus_angles_parse() {
+        for angle in corpus() {
+            assert!(parse_angle(&angle).is_some_and(f64::is_finite), "{angle}");
+        }
+    }
+
+    proptest! {
+        #![proptest_config(proptest_config(500))]
+
+        #[test]
+        fn fuzz_angle_arbitrary_text(text in "\\PC{0,40}") {
+            if let Some(x) = parse_angle(&text) {
+                // A value, or a NaN/infinity left to the parameter's domain check.
+                prop_assert!(x.is_finite() || text.to_ascii_lowercase().contains("nan")
+                    || text.to_ascii_lowercase().contains("inf"));
+            }
+        }
+
+        #[test]
+        fn fuzz_angle_expressions(
+            sign in "[-+]?",
+            coefficient in "[0-9.eE+-]{0,8}",
+            star in "[*]{0,2}",
+            pi in "(pi|PI|p|)",
+            divisor in "(/[0-9.eE+-]{0,8})?",
+        ) {
+            let text = format!("{sign}{coefficient}{star}{pi}{divisor}");
+            if let Some(x) = parse_angle(&text) {
+                prop_assert!(x.is_finite() || text.to_ascii_lowercase().contains("inf")
+                    || text.to_ascii_lowercase().contains("nan"), "{text} -> {x}");
+            }
+        }
+
+        #[test]
+        fn fuzz_angle_mutated_corpus(
+            seed in any::<prop::sample::Index>(),
+            insert in "\\PC{0,4}",
+            at in any::<prop::sample::Index>(),
+        ) {
+            let seeds = corpus();
+            let seed = &seeds[seed.index(seeds.len())];
+            let chars: Vec<char> = seed.chars().collect();
+            let k = at.index(chars.len() + 1);
+            let text: String = chars[..k].iter().chain(insert.chars().collect::<Vec<_>>().iter())
+                .chain(chars[k..].iter()).collect();
+            let _ = parse_angle(&text);
+        }
+    }
 }

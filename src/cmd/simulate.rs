@@ -18,7 +18,7 @@ use std::time::Instant;
 
 use anyhow::{Context, Result, bail};
 use tumble_integrators::Flow;
-use tumble_scenarios::scene::CancelFlag;
+use tumble_scenarios::scene::{CancelFlag, MAX_ANGLE_PER_STEP};
 use tumble_scenarios::scene_file::SceneFile;
 use tumble_scenarios::scenes;
 use tumble_scenarios::{
@@ -58,7 +58,12 @@ pub struct Args {
     pub t_end: Option<f64>,
     /// Write every N-th step (the first row is always the initial state, the last the final
     /// state).
-    #[arg(long, value_name = "N", conflicts_with_all = ["at", "output_dt"])]
+    #[arg(
+        long,
+        value_name = "N",
+        conflicts_with_all = ["at", "output_dt"],
+        allow_negative_numbers = true
+    )]
     pub every: Option<u64>,
     /// Write rows at exactly these times (comma-separated, increasing, in [0, T]), from the
     /// integrator's dense output, and the final state; the steps are the same as without.
@@ -78,11 +83,20 @@ pub struct Args {
     pub max_steps: u64,
     /// Warn (on stderr and in the provenance file) when the largest relative energy error of
     /// the run exceeds this: the step does not resolve the motion.
-    #[arg(long = "energy-warn", value_name = "REL", default_value_t = 1e-6)]
+    #[arg(
+        long = "energy-warn",
+        value_name = "REL",
+        default_value_t = 1e-6,
+        allow_negative_numbers = true
+    )]
     pub energy_warn: f64,
     /// Refuse a run whose CSV is estimated to be larger than this many bytes (suffixes k, M, G).
     #[arg(long = "max-output", value_name = "BYTES", default_value = "10G")]
     pub max_output: String,
+    /// Run even when the fixed step turns the initial state's fastest rotation by more than
+    /// 0.5 rad a step (a step that does not resolve the motion is refused otherwise).
+    #[arg(long = "allow-coarse-step")]
+    pub allow_coarse_step: bool,
     /// Write the CSV to FILE instead of stdout (`-` is stdout).
     #[arg(short = 'o', long = "output", value_name = "FILE.csv")]
     pub output: Option<PathBuf>,
@@ -208,12 +222,71 @@ fn setup(args: &Args) -> Result<Setup> {
         .resolve(scene.info())
         .map_err(|e| anyhow::anyhow!("{}: {}", scene.info().name, flag_words(&e)))?;
     check_budget(&plan, scene.info(), args)?;
+    if !(args.energy_warn >= 0.0) {
+        bail!(
+            "--energy-warn {}: must be a relative energy error >= 0",
+            number(args.energy_warn)
+        );
+    }
+    if !args.allow_coarse_step {
+        check_resolution(scene, &params, &plan)?;
+    }
     Ok(Setup {
         scene,
         origin,
         params,
         plan,
     })
+}
+
+/// Refuses a fixed step that turns the initial state's fastest rotation
+/// ([`Scene::initial_rate`]) by more than [`MAX_ANGLE_PER_STEP`] a step, with the bound and a
+/// step that resolves it. Adaptive runs choose their own steps; the exact flow has no step
+/// error.
+fn check_resolution(scene: &dyn Scene, params: &Params, plan: &RunPlan) -> Result<()> {
+    let info = scene.info();
+    let StepControl::Fixed(h) = plan.step else {
+        return Ok(());
+    };
+    if plan.method.properties.exact {
+        // The exact flow has no step error: its step only spaces the rows.
+        return Ok(());
+    }
+    let Some(rate) = scene.initial_rate(params) else {
+        return Ok(());
+    };
+    let rate = rate.map_err(|e| anyhow::anyhow!("{}: {e}", info.name))?;
+    let angle = h * rate;
+    if angle > MAX_ANGLE_PER_STEP {
+        let suggested = round_down(0.5 * MAX_ANGLE_PER_STEP / rate);
+        bail!(
+            "{}: dt = {} does not resolve the initial rotation: |ω| ≈ {} rad/s turns {} rad a \
+             step, above the bound h·|ω| ≤ {MAX_ANGLE_PER_STEP}; give --dt {} or smaller (or an \
+             adaptive integrator, --integrator dop853), or pass --allow-coarse-step to run anyway",
+            info.name,
+            number(h),
+            significant(rate),
+            significant(angle),
+            number(suggested)
+        );
+    }
+    Ok(())
+}
+
+/// `x` rounded down to one significant digit (`0.00037` → `0.0003`).
+fn round_down(x: f64) -> f64 {
+    let scale = 10f64.powf(x.log10().floor());
+    let r = (x / scale).floor() * scale;
+    if r > 0.0 && r.is_finite() { r } else { x }
+}
+
+/// `x` to three significant digits (in exponent form outside `[1e-3, 1e7)`).
+fn significant(x: f64) -> String {
+    if (1e-3..1e7).contains(&x.abs()) {
+        format!("{}", format!("{x:.2e}").parse::<f64>().unwrap_or(x))
+    } else {
+        format!("{x:.2e}")
+    }
 }
 
 /// Parses a byte count with an optional suffix: `1000`, `500k`, `20M`, `10G`.
@@ -342,7 +415,8 @@ fn failure_state(e: &SceneError) -> Option<&[f64]> {
             | I::NoConvergence { state, .. }
             | I::SingularMatrix { state, .. }
             | I::StepSizeUnderflow { state, .. }
-            | I::TooManySteps { state, .. },
+            | I::TooManySteps { state, .. }
+            | I::TimeLimit { state, .. },
         ) => Some(state),
         _ => None,
     }

@@ -9,7 +9,7 @@
 use std::fmt::Write as _;
 use std::path::PathBuf;
 
-use anyhow::{Context, Result, bail};
+use anyhow::{Result, bail};
 use tumble_integrators::registry;
 use tumble_scenarios::{Params, Scene, StepControl};
 use tumble_studies::work_precision::{
@@ -41,7 +41,8 @@ pub struct Args {
     /// Output folder (default `out/work-precision/SCENE`, or `.../SCENE-long`).
     #[arg(short = 'o', long = "output", value_name = "DIR")]
     pub output: Option<PathBuf>,
-    /// A ladder stops after a run that took longer than this many seconds.
+    /// A ladder stops after a run that took longer than this many seconds; a run still going
+    /// at twice this is cut. Each run of the reference is limited to 60 times this.
     #[arg(long = "max-seconds", value_name = "S", default_value_t = 0.5)]
     pub max_seconds: f64,
     /// Long-run mode: relative energy error against time over `--long-steps` steps.
@@ -54,6 +55,9 @@ pub struct Args {
     #[arg(long = "long-steps", value_name = "N", default_value_t = 1 << 20)]
     pub long_steps: u64,
 }
+
+/// Each run of the reference is limited to this multiple of `--max-seconds`.
+const REFERENCE_FACTOR: f64 = 60.0;
 
 /// Runs the subcommand.
 ///
@@ -104,6 +108,7 @@ pub fn run(args: &Args) -> Result<()> {
     let mut config = Config::new(info);
     config.t_end = t_end;
     config.max_run_seconds = args.max_seconds;
+    config.max_reference_seconds = REFERENCE_FACTOR * args.max_seconds;
     tumble_scenarios::scene::check_horizon(t_end)
         .map_err(|e| anyhow::anyhow!("{}: {}", info.name, flag_words(&e)))?;
     let integrators: Vec<String> = if args.integrators.is_empty() {
@@ -125,8 +130,25 @@ pub fn run(args: &Args) -> Result<()> {
         "work-precision  {} ({origin}), t in [0, {t_end}] s",
         info.name
     );
-    let reference = work_precision::reference(scene, &params, t_end)
-        .with_context(|| format!("{}: the reference run failed", info.name))?;
+    let reference = work_precision::reference_within(
+        scene,
+        &params,
+        t_end,
+        Some(config.max_reference_seconds),
+    )
+    .map_err(|e| match e {
+        tumble_scenarios::SceneError::Integration(tumble_integrators::Error::TimeLimit {
+            t,
+            seconds,
+            ..
+        }) => anyhow::anyhow!(
+            "{}: the reference run over [0, {t_end}] s was cut after {seconds} s of wall time at \
+             t = {t} s ({REFERENCE_FACTOR} × --max-seconds); shorten --t-end or raise \
+             --max-seconds",
+            info.name
+        ),
+        e => anyhow::Error::new(e).context(format!("{}: the reference run failed", info.name)),
+    })?;
     eprintln!("reference       {}", reference.method);
     eprintln!(
         "cross-check     {}: agrees to {:.1e}",

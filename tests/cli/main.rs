@@ -1,5 +1,6 @@
 //! Tests of the `tumble` binary: one module per subcommand, each running the built binary.
 
+mod hostile;
 mod inertia;
 mod interrupts;
 mod outputs_and_limits;

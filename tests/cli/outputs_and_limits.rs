@@ -237,12 +237,14 @@ fn runaway_runs_are_refused_before_any_step() {
 #[test]
 fn an_unresolved_motion_is_reported_not_hidden() {
     // The T-handle spun at 10^6 rad/s with split4 at 1 ms: the energy drifts by tens of per
-    // cent. The run completes, and says so on stderr and in its provenance file.
+    // cent. Such a step is refused unless --allow-coarse-step; with it, the run completes and
+    // says so on stderr and in its provenance file.
     let dir = TempDir::new().unwrap();
     let out = succeeds(
         dir.path(),
         &[
             "simulate",
+            "--allow-coarse-step",
             "dzhanibekov",
             "--set",
             "spin=1e6",

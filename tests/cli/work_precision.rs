@@ -171,3 +171,38 @@ fn bad_flags_are_rejected_before_any_run() {
         assert!(!tmp.path().join("out").exists(), "{args:?} left output");
     }
 }
+
+#[test]
+fn max_seconds_bounds_every_run_even_of_a_long_horizon() {
+    // A horizon of 10^7 s: the reference's cross-check alone would run for hours. Each of its
+    // runs is limited to 60 × --max-seconds (1.2 s here), and the folder is left as it was.
+    let tmp = TempDir::new().unwrap();
+    let start = std::time::Instant::now();
+    let out = tumble_in(
+        tmp.path(),
+        &[
+            "work-precision",
+            "free-body",
+            "--t-end",
+            "1e7",
+            "--max-seconds",
+            "0.02",
+            "--integrators",
+            "rk4",
+            "-o",
+            "wp",
+        ],
+    );
+    let err = text(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(
+        err.contains("was cut after 1.2 s of wall time") && err.contains("--max-seconds"),
+        "{err}"
+    );
+    assert!(
+        start.elapsed().as_secs_f64() < 20.0,
+        "{:?}",
+        start.elapsed()
+    );
+    assert!(!tmp.path().join("wp").exists());
+}

@@ -175,6 +175,18 @@ pub enum MeshError {
         /// Its coordinates.
         position: Point3<f64>,
     },
+    /// The mesh is so large that its integrals (up to fifth powers of the coordinates)
+    /// overflow.
+    #[error(
+        "mesh is too large: its bounding-box diagonal is {diagonal:e}, above {limit:e}, where \
+         the volume and inertia integrals overflow; give the coordinates in a larger unit"
+    )]
+    TooLarge {
+        /// The bounding box's diagonal.
+        diagonal: f64,
+        /// The largest diagonal accepted.
+        limit: f64,
+    },
     /// A face refers to a vertex that does not exist.
     #[error("face {face} refers to vertex {index}, but the mesh has {vertex_count} vertices")]
     VertexIndexOutOfRange {

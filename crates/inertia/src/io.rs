@@ -21,7 +21,7 @@ use std::path::Path;
 
 use nalgebra::Point3;
 
-use crate::error::LoadError;
+use crate::error::{LoadError, MeshError};
 use crate::mesh::{TriangleMesh, ValidationOptions};
 
 /// Mesh file formats.
@@ -78,6 +78,19 @@ pub fn load_obj(
         path: path.to_owned(),
         source,
     })?;
+    parse_obj(&bytes, path, options)
+}
+
+/// Parses and validates the Wavefront OBJ text `bytes` (read from `path`, named in errors).
+///
+/// # Errors
+/// [`LoadError::Obj`] if it does not parse, [`LoadError::Mesh`] if a face names a vertex that
+/// does not exist or the mesh is not a valid closed surface.
+pub fn parse_obj(
+    bytes: &[u8],
+    path: &Path,
+    options: &ValidationOptions,
+) -> Result<TriangleMesh, LoadError> {
     let load_options = tobj::LoadOptions {
         triangulate: true,
         single_index: false,
@@ -93,15 +106,32 @@ pub fn load_obj(
         source,
     })?;
     let mut soup = Soup::default();
+    let mut face = 0;
     for model in &models {
         let positions = &model.mesh.positions;
         for triangle in model.mesh.indices.chunks(3) {
             let mut corners = [Point3::origin(); 3];
+            let out_of_range = |index: usize| LoadError::Mesh {
+                path: path.to_owned(),
+                source: MeshError::VertexIndexOutOfRange {
+                    face,
+                    index,
+                    vertex_count: positions.len() / 3,
+                },
+            };
+            if triangle.len() != 3 {
+                return Err(out_of_range(usize::MAX));
+            }
             for (corner, &index) in corners.iter_mut().zip(triangle) {
-                let k = 3 * index as usize;
-                *corner = Point3::new(positions[k], positions[k + 1], positions[k + 2]);
+                let index = index as usize;
+                let xyz = index
+                    .checked_mul(3)
+                    .and_then(|k| positions.get(k..k.checked_add(3)?))
+                    .ok_or_else(|| out_of_range(index))?;
+                *corner = Point3::new(xyz[0], xyz[1], xyz[2]);
             }
             soup.push(corners);
+            face += 1;
         }
     }
     soup.into_mesh(path, options)
@@ -117,10 +147,24 @@ pub fn load_stl(
     options: &ValidationOptions,
 ) -> Result<TriangleMesh, LoadError> {
     let path = path.as_ref();
-    let mut bytes = fs::read(path).map_err(|source| LoadError::Io {
+    let bytes = fs::read(path).map_err(|source| LoadError::Io {
         path: path.to_owned(),
         source,
     })?;
+    parse_stl(bytes, path, options)
+}
+
+/// Parses and validates the STL file `bytes` (ASCII or binary, read from `path`, named in
+/// errors).
+///
+/// # Errors
+/// [`LoadError::Stl`] if it does not parse, [`LoadError::Mesh`] if the mesh is not a valid
+/// closed surface.
+pub fn parse_stl(
+    mut bytes: Vec<u8>,
+    path: &Path,
+    options: &ValidationOptions,
+) -> Result<TriangleMesh, LoadError> {
     if looks_like_binary_stl(&bytes) && bytes.starts_with(b"solid") {
         // The header is free text that binary readers ignore; blank its first byte so that
         // `stl_io` does not take the file for ASCII.

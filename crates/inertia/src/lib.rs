@@ -97,7 +97,7 @@ pub mod t_handle;
 
 pub use error::{Edge, InertiaError, LoadError, MeshError};
 pub use euler::off_diagonal_norm;
-pub use io::{MeshFormat, load_mesh, load_obj, load_stl};
+pub use io::{MeshFormat, load_mesh, load_obj, load_stl, parse_obj, parse_stl};
 pub use mass_properties::{MassProperties, PointMass, parallel_axis_term};
 pub use mesh::{MassSpec, TriangleMesh, ValidationOptions};
 pub use principal::{

@@ -54,6 +54,10 @@ use crate::mass_properties::MassProperties;
 use crate::principal::Definiteness;
 use crate::sum::MomentSums;
 
+/// The largest bounding-box diagonal of a mesh: the inertia integrals take fifth powers of the
+/// coordinates, which overflow beyond about 1e61.
+pub const MAX_DIAGONAL: f64 = 1e60;
+
 /// How the mass of a solid is given: a uniform density, or the total mass (the density is then
 /// `M / V`).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -132,6 +136,7 @@ impl TriangleMesh {
     /// A validated mesh.
     ///
     /// # Errors
+    /// [`MeshError::TooLarge`] for a bounding-box diagonal above [`MAX_DIAGONAL`];
     /// A [`MeshError`] naming the first problem found (see the [module docs](self));
     /// [`MeshError::InvalidTolerance`] for a negative or non-finite tolerance.
     pub fn try_new_with(
@@ -146,6 +151,12 @@ impl TriangleMesh {
         check_indices_and_coordinates(&vertices, &faces)?;
         let (lower, upper) = bounding_box(&vertices, &faces);
         let diagonal = (upper - lower).norm();
+        if !(diagonal <= MAX_DIAGONAL) {
+            return Err(MeshError::TooLarge {
+                diagonal,
+                limit: MAX_DIAGONAL,
+            });
+        }
         check_face_areas(&vertices, &faces, tolerance * diagonal * diagonal)?;
         check_edges(&vertices, &faces)?;
 

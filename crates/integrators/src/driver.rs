@@ -15,7 +15,8 @@
 //! - **Observers** ([`Observer`]) are called at `t₀`, every `n`-th step, and at the end;
 //!   the default does nothing and nothing is stored unless an observer stores it.
 //! - **Cancellation**: a callback polled before every step; a cancelled run returns
-//!   [`Status::Cancelled`] with the last completed state.
+//!   [`Status::Cancelled`] with the last completed state. A wall-clock deadline
+//!   ([`Driver::deadline`]) ends a run with [`Error::TimeLimit`].
 //!
 //! Every step's result is checked: a non-finite state is [`Error::NonFinite`] with the time
 //! and the state before the step.
@@ -189,6 +190,7 @@ pub struct Driver<'a> {
     h_max: f64,
     cancel: Option<&'a dyn Fn() -> bool>,
     cancel_flag: Option<&'a std::sync::atomic::AtomicBool>,
+    deadline: Option<(std::time::Instant, f64)>,
     outputs: &'a [f64],
 }
 
@@ -220,6 +222,7 @@ impl<'a> Driver<'a> {
             h_max: t_end - t0,
             cancel: None,
             cancel_flag: None,
+            deadline: None,
             outputs: &[],
         })
     }
@@ -304,6 +307,47 @@ impl<'a> Driver<'a> {
     pub fn cancel_flag(mut self, flag: &'a std::sync::atomic::AtomicBool) -> Self {
         self.cancel_flag = Some(flag);
         self
+    }
+
+    /// Give up (with [`Error::TimeLimit`]) once `seconds` of wall time have passed since this
+    /// call (the clock is read every [`Driver::CLOCK_EVERY`] steps).
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] unless `seconds` is finite and positive.
+    pub fn deadline(mut self, seconds: f64) -> Result<Self, Error> {
+        if !(seconds.is_finite() && seconds > 0.0) {
+            return Err(Error::InvalidParameter {
+                name: "deadline",
+                value: seconds,
+                reason: "must be finite and positive",
+            });
+        }
+        let now = std::time::Instant::now();
+        let at = now
+            .checked_add(std::time::Duration::from_secs_f64(seconds.min(1e9)))
+            .unwrap_or(now);
+        self.deadline = Some((at, seconds));
+        Ok(self)
+    }
+
+    /// Steps between two readings of the clock for [`Driver::deadline`].
+    pub const CLOCK_EVERY: u64 = 32;
+
+    /// [`Error::TimeLimit`] at `(t, state)` if the deadline has passed (checked every
+    /// [`Driver::CLOCK_EVERY`] steps).
+    fn check_deadline<S: State>(&self, step: u64, t: f64, state: &S) -> Result<(), Error> {
+        match self.deadline {
+            Some((at, seconds))
+                if step.is_multiple_of(Self::CLOCK_EVERY) && std::time::Instant::now() >= at =>
+            {
+                Err(Error::TimeLimit {
+                    t,
+                    seconds,
+                    state: state.to_vec(),
+                })
+            }
+            _ => Ok(()),
+        }
     }
 
     fn cancelled(&self) -> bool {
@@ -429,6 +473,7 @@ impl<'a> Driver<'a> {
                 report.status = Status::Cancelled;
                 return Ok(report);
             }
+            self.check_deadline(k, t, state)?;
             if k >= self.max_steps {
                 return Err(Error::TooManySteps {
                     t,
@@ -519,6 +564,7 @@ impl<'a> Driver<'a> {
                 report.status = Status::Cancelled;
                 return Ok(report);
             }
+            self.check_deadline(attempts, t, state)?;
             if report.steps >= self.max_steps {
                 return Err(Error::TooManySteps {
                     t,

@@ -93,6 +93,16 @@ pub enum Error {
         /// State at `t`.
         state: Vec<f64>,
     },
+    /// The run reached its wall-clock deadline ([`crate::driver::Driver::deadline`]).
+    #[error("time limit of {seconds} s reached at t = {t}")]
+    TimeLimit {
+        /// Time reached.
+        t: f64,
+        /// The limit (s of wall time).
+        seconds: f64,
+        /// State at `t`.
+        state: Vec<f64>,
+    },
     /// A name that the registry does not know.
     #[error("unknown integrator `{0}`")]
     UnknownMethod(String),

@@ -20,7 +20,9 @@
 //! classification exists and why nothing here ever renames over anything but a regular file.
 //!
 //! Temporary files are named `.NAME.XXXXXX.tmp.EXT` (hidden, with the destination's
-//! extension) and are removed when dropped, including on an early return with `?`.
+//! extension) and are removed when dropped, including on an early return with `?`; those a
+//! killed process left are found by [`is_temp_name`] and removed by
+//! [`remove_stale_temp_files`].
 
 use std::fs::{File, OpenOptions};
 use std::io::{self, Write};
@@ -429,6 +431,64 @@ fn temp_file_in(path: &Path, dir: &Path) -> io::Result<NamedTempFile> {
         builder.permissions(std::fs::Permissions::from_mode(0o666));
     }
     builder.tempfile_in(dir)
+}
+
+/// Whether `name` is the name of one of tumble's temporary files (`.NAME.XXXXXX.tmp` or
+/// `.NAME.XXXXXX.tmp.EXT`, `XXXXXX` six letters or digits, `EXT` `NAME`'s own extension).
+#[must_use]
+pub fn is_temp_name(name: &str) -> bool {
+    let Some(name) = name.strip_prefix('.') else {
+        return false;
+    };
+    let (rest, ext) = if let Some(rest) = name.strip_suffix(".tmp") {
+        (rest, None)
+    } else if let Some((rest, ext)) = name.rsplit_once(".tmp.") {
+        if ext.is_empty() || ext.contains('.') {
+            return false;
+        }
+        (rest, Some(ext))
+    } else {
+        return false;
+    };
+    let Some((target, random)) = rest.rsplit_once('.') else {
+        return false;
+    };
+    let random_ok = random.len() == 6 && random.bytes().all(|b| b.is_ascii_alphanumeric());
+    let target_ext = Path::new(target).extension().and_then(|e| e.to_str());
+    !target.is_empty() && random_ok && target_ext == ext
+}
+
+/// Removes the temporary files ([`is_temp_name`]) that an interrupted or killed run of tumble
+/// left in `dir` and its subfolders (to a depth of two); returns the paths removed. Call it only
+/// while holding `dir`'s [`FolderLock`]: a live writer's temporary file would go too.
+///
+/// # Errors
+/// A folder that cannot be listed or a file that cannot be removed.
+pub fn remove_stale_temp_files(dir: &Path) -> io::Result<Vec<PathBuf>> {
+    let mut removed = Vec::new();
+    remove_temp_files_in(dir, 2, &mut removed)?;
+    removed.sort();
+    Ok(removed)
+}
+
+fn remove_temp_files_in(dir: &Path, depth: u32, removed: &mut Vec<PathBuf>) -> io::Result<()> {
+    for entry in std::fs::read_dir(dir)? {
+        let entry = entry?;
+        let kind = entry.file_type()?;
+        let path = entry.path();
+        if kind.is_dir() {
+            if depth > 0 {
+                remove_temp_files_in(&path, depth - 1, removed)?;
+            }
+        } else if kind.is_file() && entry.file_name().to_str().is_some_and(is_temp_name) {
+            match std::fs::remove_file(&path) {
+                Ok(()) => removed.push(path),
+                Err(e) if e.kind() == io::ErrorKind::NotFound => {}
+                Err(e) => return Err(e),
+            }
+        }
+    }
+    Ok(())
 }
 
 /// A new, empty temporary file beside `path` (same directory, so the final rename is atomic).

@@ -189,6 +189,9 @@ pub struct RunPlan {
     pub max_steps: u64,
     /// Ends the run early once set.
     pub cancel: Option<CancelFlag>,
+    /// Wall-clock limit (s) of one run: beyond it the run fails with
+    /// [`tumble_integrators::Error::TimeLimit`].
+    pub deadline: Option<f64>,
     /// Which states are observed.
     pub observe: Observe,
 }
@@ -213,6 +216,15 @@ impl RunPlan {
         })
     }
 
+    /// The same plan with each run limited to `seconds` of wall time.
+    #[must_use]
+    pub fn with_deadline(&self, seconds: f64) -> Self {
+        Self {
+            deadline: Some(seconds),
+            ..self.clone()
+        }
+    }
+
     /// The same plan observing only the initial and final states.
     #[must_use]
     pub fn observing(&self, observe: Observe) -> Self {
@@ -228,6 +240,9 @@ impl RunPlan {
         let mut driver = Driver::new(0.0, self.t_end)?.max_steps(self.max_steps);
         if let Some(CancelFlag(flag)) = self.cancel {
             driver = driver.cancel_flag(flag);
+        }
+        if let Some(seconds) = self.deadline {
+            driver = driver.deadline(seconds)?;
         }
         if let Some(times) = &self.times {
             driver = driver.output_at(times)?;
@@ -304,6 +319,7 @@ impl RunOptions {
             times,
             max_steps: self.max_steps.unwrap_or(u64::MAX),
             cancel: self.cancel,
+            deadline: None,
             observe: self.observe,
         })
     }
@@ -563,6 +579,10 @@ pub enum Guide {
     },
 }
 
+/// The largest angle (rad) a fixed step may turn at the initial state's fastest rate
+/// ([`Scene::initial_rate`]): about 12 steps a turn.
+pub const MAX_ANGLE_PER_STEP: f64 = 0.5;
+
 /// A built-in scene.
 pub trait Scene: Sync {
     /// Its documentation.
@@ -605,6 +625,17 @@ pub trait Scene: Sync {
         &self,
         _params: &Params,
     ) -> Option<Result<nalgebra::Vector3<f64>, SceneError>> {
+        None
+    }
+
+    /// The fastest angular rate (rad/s) of the initial state at `params` (an upper estimate:
+    /// spin and relative rates added), against which a fixed step is judged: a step `h` with
+    /// `h · rate` above [`MAX_ANGLE_PER_STEP`] does not resolve the motion. `None`: the scene
+    /// has no such rate.
+    ///
+    /// # Errors
+    /// (Inside the `Some`) a parameter that is missing.
+    fn initial_rate(&self, _params: &Params) -> Option<Result<f64, SceneError>> {
         None
     }
 

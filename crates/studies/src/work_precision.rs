@@ -157,8 +157,11 @@ pub struct Reference {
 pub struct Config {
     /// Horizon (s).
     pub t_end: f64,
-    /// A ladder stops after a run that took longer than this (s) (its rung is kept).
+    /// A ladder stops after a run that took longer than this (s) (its rung is kept); a run
+    /// still going at [`Config::CUT_FACTOR`] times this is cut (its rung dropped).
     pub max_run_seconds: f64,
+    /// Wall-time limit (s) of each run of the reference ([`reference_within`]).
+    pub max_reference_seconds: f64,
     /// A ladder stops after a run of more steps than this (a budget that, unlike time, does
     /// not depend on the machine: for tests).
     pub max_steps: u64,
@@ -169,12 +172,16 @@ pub struct Config {
 }
 
 impl Config {
+    /// A ladder's run is cut at this multiple of [`Config::max_run_seconds`].
+    pub const CUT_FACTOR: f64 = 2.0;
+
     /// The defaults for `info`: its horizon, 0.5 s per run, errors from `1e-2` down to `1e-14`.
     #[must_use]
     pub fn new(info: &SceneInfo) -> Self {
         Config {
             t_end: info.default_t_end,
             max_run_seconds: 0.5,
+            max_reference_seconds: 30.0,
             max_steps: u64::MAX,
             error_floor: 1e-14,
             max_error: 1e-1,
@@ -213,6 +220,8 @@ pub struct FailedRung {
     pub control: StepControl,
     /// Why.
     pub reason: String,
+    /// Whether the run was cut at its time limit.
+    pub time_limit: bool,
 }
 
 /// The ladder of one integrator.
@@ -284,6 +293,20 @@ pub fn highest_order(
 /// # Errors
 /// A failing reference run.
 pub fn reference(scene: &dyn Scene, params: &Params, t_end: f64) -> Result<Reference, SceneError> {
+    reference_within(scene, params, t_end, None)
+}
+
+/// [`reference`] with each of its runs limited to `seconds` of wall time (when given).
+///
+/// # Errors
+/// A failing reference run, [`tumble_integrators::Error::TimeLimit`] for one that reached the
+/// limit.
+pub fn reference_within(
+    scene: &dyn Scene,
+    params: &Params,
+    t_end: f64,
+    seconds: Option<f64>,
+) -> Result<Reference, SceneError> {
     let info = scene.info();
     let h_small = refine_step(info.default_step / 16.0, t_end);
     let tight = StepControl::Tolerance(1e-13);
@@ -322,7 +345,11 @@ pub fn reference(scene: &dyn Scene, params: &Params, t_end: f64) -> Result<Refer
         )
     };
     let run = |name: &str, c: StepControl| {
-        final_state(scene, params, &plan(info, name, c, t_end, Observe::Ends)?).map(|(s, _)| s)
+        let mut plan = plan(info, name, c, t_end, Observe::Ends)?;
+        if let Some(seconds) = seconds.filter(|s| s.is_finite()) {
+            plan = plan.with_deadline(seconds);
+        }
+        final_state(scene, params, &plan).map(|(s, _)| s)
     };
     let state = run(method, control)?;
     let checked = run(check, check_control)?;
@@ -442,6 +469,12 @@ pub fn ladder(
         ..RunOptions::default()
     }
     .resolve(info)?;
+    let limit = config.max_run_seconds * Config::CUT_FACTOR;
+    let base = if limit.is_finite() {
+        base.with_deadline(limit)
+    } else {
+        base
+    };
     let method = base.method;
     let order = match method.order {
         Order::Finite(p) => Some(p),
@@ -466,11 +499,16 @@ pub fn ladder(
                     integrator: integrator.to_string(),
                     control,
                     reason: e.to_string(),
+                    time_limit: matches!(
+                        e,
+                        SceneError::Integration(tumble_integrators::Error::TimeLimit { .. })
+                    ),
                 });
                 None
             }
         }
     };
+    let cut = |out: &Ladder| out.failures.last().is_some_and(|f| f.time_limit);
     let Some(p) = order else {
         // The exact flow: one rung at the scene's default step.
         let h = refine_step(info.default_step, t_end);
@@ -478,7 +516,14 @@ pub fn ladder(
             progress(&r);
             out.rungs.push(r);
         }
-        out.stop = "exact flow: one rung".into();
+        out.stop = if cut(&out) {
+            format!(
+                "a run was cut at {} s",
+                config.max_run_seconds * Config::CUT_FACTOR
+            )
+        } else {
+            "exact flow: one rung".into()
+        };
         return Ok(out);
     };
     let adaptive = method.properties.adaptive;
@@ -515,6 +560,13 @@ pub fn ladder(
             continue;
         }
         let Some(r) = run(control, &mut out) else {
+            if cut(&out) {
+                out.stop = format!(
+                    "a run was cut at {} s",
+                    config.max_run_seconds * Config::CUT_FACTOR
+                );
+                break;
+            }
             if out.rungs.is_empty() && k < 40 {
                 continue;
             }

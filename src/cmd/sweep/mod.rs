@@ -89,7 +89,11 @@ pub struct Args {
     /// Largest change of a metric under the self-check accepted as converged; above it the
     /// summary warns and the exit status is 4 [default: the sweep file's `metrics.tolerance`,
     /// else 1e-6].
-    #[arg(long = "check-tolerance", value_name = "TOL")]
+    #[arg(
+        long = "check-tolerance",
+        value_name = "TOL",
+        allow_negative_numbers = true
+    )]
     pub check_tolerance: Option<f64>,
     /// When stderr is not a terminal (a batch job's log), write a progress line (points done,
     /// points per second, ETA) every this many seconds; 0 writes none. On a terminal a
@@ -145,7 +149,11 @@ pub struct MergeArgs {
     #[arg(long, value_name = "N|auto|off", default_value = "auto")]
     pub check: String,
     /// As for `tumble sweep`.
-    #[arg(long = "check-tolerance", value_name = "TOL")]
+    #[arg(
+        long = "check-tolerance",
+        value_name = "TOL",
+        allow_negative_numbers = true
+    )]
     pub check_tolerance: Option<f64>,
 }
 

@@ -4,6 +4,7 @@
 
 mod common;
 mod euler;
+mod fuzz;
 mod mesh_integrals;
 mod operations;
 mod primitives;

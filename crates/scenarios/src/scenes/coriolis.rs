@@ -139,6 +139,10 @@ impl Scene for CoriolisDropScene {
         &CORIOLIS_DROP
     }
 
+    fn initial_rate(&self, params: &Params) -> Option<Result<f64, SceneError>> {
+        Some(params.get("omega_earth").map(f64::abs))
+    }
+
     fn simulate(
         &self,
         params: &Params,

@@ -357,6 +357,14 @@ impl Scene for FreeHoopScene {
         &FREE_HOOP
     }
 
+    fn initial_rate(&self, params: &Params) -> Option<Result<f64, SceneError>> {
+        Some(
+            params
+                .get("omega0")
+                .and_then(|w| Ok(w.abs() + params.get("alpha_dot0")?.abs())),
+        )
+    }
+
     fn simulate(
         &self,
         params: &Params,

@@ -406,6 +406,14 @@ impl Scene for DrivenHoopScene {
         &DRIVEN_HOOP
     }
 
+    fn initial_rate(&self, params: &Params) -> Option<Result<f64, SceneError>> {
+        Some(
+            params
+                .get("omega")
+                .and_then(|w| Ok(w.abs() + params.get("alpha_dot0")?.abs())),
+        )
+    }
+
     fn simulate(
         &self,
         params: &Params,
@@ -523,6 +531,14 @@ pub struct SpinningHoopScene;
 impl Scene for SpinningHoopScene {
     fn info(&self) -> &'static SceneInfo {
         &SPINNING_HOOP
+    }
+
+    fn initial_rate(&self, params: &Params) -> Option<Result<f64, SceneError>> {
+        Some(
+            params
+                .get("omega0")
+                .and_then(|w| Ok(w.abs() + params.get("alpha_dot0")?.abs())),
+        )
     }
 
     fn simulate(

@@ -308,6 +308,17 @@ impl Scene for FreeBodyScene {
         &FREE_BODY
     }
 
+    fn initial_rate(&self, params: &Params) -> Option<Result<f64, SceneError>> {
+        let mut sum = 0.0;
+        for (m, i) in [("m1", "I1"), ("m2", "I2"), ("m3", "I3")] {
+            match (params.get(m), params.get(i)) {
+                (Ok(m), Ok(i)) => sum += (m / i).powi(2),
+                (Err(e), _) | (_, Err(e)) => return Some(Err(e)),
+            }
+        }
+        Some(Ok(sum.sqrt()))
+    }
+
     fn simulate(
         &self,
         params: &Params,
@@ -400,6 +411,14 @@ impl DzhanibekovScene {
 impl Scene for DzhanibekovScene {
     fn info(&self) -> &'static SceneInfo {
         &DZHANIBEKOV
+    }
+
+    fn initial_rate(&self, params: &Params) -> Option<Result<f64, SceneError>> {
+        Some(
+            params
+                .get("perturbation")
+                .and_then(|eps| Ok(params.get("spin")?.abs() * (1.0 + 2.0 * eps * eps).sqrt())),
+        )
     }
 
     fn simulate(
@@ -508,6 +527,10 @@ impl HeavyTopScene {
 impl Scene for HeavyTopScene {
     fn info(&self) -> &'static SceneInfo {
         &HEAVY_TOP
+    }
+
+    fn initial_rate(&self, params: &Params) -> Option<Result<f64, SceneError>> {
+        Some(params.get("spin0").map(f64::abs))
     }
 
     fn simulate(

@@ -7,6 +7,7 @@ mod coriolis_drop;
 mod driven_hoop;
 mod free_hoop;
 mod free_hoop_euler;
+mod fuzz;
 mod heavy_top_euler;
 mod lagrangian_ad;
 mod rigid_scenes;

@@ -258,6 +258,11 @@ pub(crate) fn open_folder(
         return Ok((writer, contents.rows));
     }
     if dir.join(RESULTS).exists() {
+        if resume {
+            return Err(SweepError::NoJournal {
+                dir: dir.to_path_buf(),
+            });
+        }
         return Err(SweepError::Exists {
             dir: dir.to_path_buf(),
             found: RESULTS,

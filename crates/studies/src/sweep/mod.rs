@@ -216,6 +216,16 @@ pub enum SweepError {
         /// The file found.
         found: &'static str,
     },
+    /// `--resume` of a folder whose results are there but whose journal is gone.
+    #[error(
+        "{}: cannot resume: the folder holds results.csv but no journal.csv to resume from; \
+         choose another output folder",
+        dir.display()
+    )]
+    NoJournal {
+        /// The folder.
+        dir: PathBuf,
+    },
     /// The folder's sweep is not this one.
     #[error("{}: the folder holds a different sweep: {reason}", dir.display())]
     DifferentSweep {

@@ -1,6 +1,7 @@
 //! Integration tests of tumble-studies: one binary, one module per feature.
 
 mod default_accuracy;
+mod fuzz;
 mod max_tilt_reference;
 mod method_agreement;
 mod work_precision;

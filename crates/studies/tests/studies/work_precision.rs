@@ -15,6 +15,7 @@ fn config(t_end: f64, max_steps: u64) -> Config {
     Config {
         t_end,
         max_run_seconds: f64::INFINITY,
+        max_reference_seconds: f64::INFINITY,
         max_steps,
         error_floor: 1e-13,
         max_error: 1e-1,
