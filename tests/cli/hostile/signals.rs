@@ -119,8 +119,9 @@ fn signals_end_a_sweep_with_its_journal_and_no_temporary_file() {
         assert!(err.contains("--resume"), "{err}");
         let left = listing(&dir.join("sw"));
         assert!(
-            left.iter()
-                .all(|f| f.starts_with("journal.csv") || f.starts_with("sweep.toml")),
+            left.iter().all(|f| f.starts_with("journal.csv")
+                || f.starts_with("sweep.toml")
+                || f.starts_with("compute.csv")),
             "{left:?}"
         );
     }
