@@ -1,8 +1,8 @@
 //! The registry: every method with its name, order, family and properties.
 //!
 //! Names are lowercase, author + order (`yoshida6`, `kahan-li8`), Gauss–Legendre by order
-//! (`gauss2` … `gauss12`), rigid-body methods by what they are (`lgvi`, `rkmk4`, `cg3`,
-//! `split2` … `split8`, `split-exact2`, `dmv`, `exact`). To add a method, append a
+//! (`gauss2` … `gauss12`), rigid-body methods by what they are (`lgvi`, `lgvi4` … `lgvi10`,
+//! `rkmk4`, `cg3`, `split2` … `split8`, `split-exact2`, `dmv`, `exact`). To add a method, append a
 //! [`MethodInfo`] to [`METHODS`]; the registry tests check that names are unique and lowercase
 //! and that every composition and Gauss table is listed.
 //!
@@ -255,6 +255,23 @@ const fn split_entry(
     }
 }
 
+const fn lgvi_entry(
+    name: &'static str,
+    table: &'static crate::tables::CompositionTable,
+    summary: &'static str,
+) -> MethodInfo {
+    MethodInfo {
+        name,
+        order: Order::Finite(table.order),
+        family: Family::LieGroup,
+        properties: LIE_VARIATIONAL,
+        stages: table.gammas.len() as u32,
+        problem: RIGID_BODY,
+        problems: &[ProblemKind::RigidBody, ProblemKind::CoupledRigidBody],
+        summary,
+    }
+}
+
 const fn composition_entry(
     table: &'static crate::tables::CompositionTable,
     summary: &'static str,
@@ -436,8 +453,28 @@ pub const METHODS: &[MethodInfo] = &[
         stages: 1,
         problem: RIGID_BODY,
         problems: &[ProblemKind::RigidBody, ProblemKind::CoupledRigidBody],
-        summary: "Lie group variational integrator (Lee, Leok & McClamroch 2005/2007), Newton on the Cayley vector; composes to 4/6/8",
+        summary: "Lie group variational integrator (Lee, Leok & McClamroch 2005/2007), Newton on the Cayley vector",
     },
+    lgvi_entry(
+        "lgvi4",
+        &composition::MCLACHLAN4,
+        "lgvi composed with mclachlan4 (McLachlan 1995, 5 stages)",
+    ),
+    lgvi_entry(
+        "lgvi6",
+        &composition::KAHAN_LI6,
+        "lgvi composed with kahan-li6 (Kahan & Li 1997, s9odr6a)",
+    ),
+    lgvi_entry(
+        "lgvi8",
+        &composition::KAHAN_LI8,
+        "lgvi composed with kahan-li8 (Kahan & Li 1997, s17odr8a)",
+    ),
+    lgvi_entry(
+        "lgvi10",
+        &composition::SOFRONIOU_SPALETTA10,
+        "lgvi composed with sofroniou-spaletta10 (Sofroniou & Spaletta 2005, s35odr10)",
+    ),
     MethodInfo {
         name: "rkmk4",
         order: Order::Finite(4),

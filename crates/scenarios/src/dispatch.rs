@@ -12,16 +12,17 @@
 //! | kind | model | methods |
 //! |---|---|---|
 //! | [`ProblemKind::Ode`] | `y' = f(t, y)` on ℝⁿ (a flattened model) | explicit Runge–Kutta, Gauss–Legendre |
-//! | [`ProblemKind::RigidBody`] | [`RigidBody`] on SO(3) × ℝ³ | LGVI, principal-axis splittings, exact-flow splitting |
+//! | [`ProblemKind::RigidBody`] | [`RigidBody`] on SO(3) × ℝ³ | LGVI and its compositions (orders 4–10), principal-axis splittings, exact-flow splitting |
 //! | [`ProblemKind::FreeRigidBody`] | [`FreeRigidBody`] | discrete Moser–Veselov, the exact flow |
 //! | [`ProblemKind::LieVectorField`] | Euler's equations as a vector field on SO(3) × ℝ³ | RKMK, Crouch–Grossman |
-//! | [`ProblemKind::CoupledRigidBody`] | [`CoupledLagrangian`] on SO(3) × ℝⁿ | the coupled LGVI |
+//! | [`ProblemKind::CoupledRigidBody`] | [`CoupledLagrangian`] on SO(3) × ℝⁿ | the coupled LGVI and its compositions (orders 4–10) |
 
 use nalgebra::SVector;
 use tumble_integrators::rigid::{
     CoupledLagrangian, CoupledLgvi, CoupledState, Dmv, EulerEquations, ExactSplitting,
     ExactStepper, FreeRigidBody, GroupState, Lgvi, PrincipalAxisSplitting, RigidBody,
-    RigidBodyState, cg3, rkmk4, split4, split6, split8,
+    RigidBodyState, cg3, coupled_lgvi4, coupled_lgvi6, coupled_lgvi8, coupled_lgvi10, lgvi4, lgvi6,
+    lgvi8, lgvi10, rkmk4, split4, split6, split8,
 };
 use tumble_integrators::{
     Event, ExplicitRungeKutta, Observer, Ode, Order, ProblemKind, Restepped, Stepper, Tolerances,
@@ -178,6 +179,10 @@ where
     }
     let (t, steps) = match (plan.kind, plan.integrator(), free) {
         (ProblemKind::RigidBody, "lgvi", _) => on!(body, Lgvi::new()),
+        (ProblemKind::RigidBody, "lgvi4", _) => on!(body, lgvi4()),
+        (ProblemKind::RigidBody, "lgvi6", _) => on!(body, lgvi6()),
+        (ProblemKind::RigidBody, "lgvi8", _) => on!(body, lgvi8()),
+        (ProblemKind::RigidBody, "lgvi10", _) => on!(body, lgvi10()),
         (ProblemKind::RigidBody, "split2", _) => on!(body, PrincipalAxisSplitting::new()),
         (ProblemKind::RigidBody, "split4", _) => on!(body, split4()),
         (ProblemKind::RigidBody, "split6", _) => on!(body, split6()),
@@ -217,16 +222,25 @@ where
 {
     let h = fixed_step(plan)?;
     let driver = plan.driver()?;
-    let report = match (plan.kind, plan.integrator()) {
-        (ProblemKind::CoupledRigidBody, "lgvi") => {
-            let mut stepper = CoupledLgvi::<N>::new();
-            if plan.times.is_some() || observer.wants_dense_steps() {
-                let mut stepper = Restepped::new(stepper, interpolation_order(plan));
+    let dense = plan.times.is_some() || observer.wants_dense_steps();
+    let order = interpolation_order(plan);
+    macro_rules! on {
+        ($stepper:expr) => {{
+            let mut stepper = $stepper;
+            if dense {
+                let mut stepper = Restepped::new(stepper, order);
                 driver.run_fixed_with_events(&mut stepper, model, state, h, &mut [], observer)?
             } else {
                 driver.run_fixed(&mut stepper, model, state, h, observer)?
             }
-        }
+        }};
+    }
+    let report = match (plan.kind, plan.integrator()) {
+        (ProblemKind::CoupledRigidBody, "lgvi") => on!(CoupledLgvi::<N>::new()),
+        (ProblemKind::CoupledRigidBody, "lgvi4") => on!(coupled_lgvi4::<N>()),
+        (ProblemKind::CoupledRigidBody, "lgvi6") => on!(coupled_lgvi6::<N>()),
+        (ProblemKind::CoupledRigidBody, "lgvi8") => on!(coupled_lgvi8::<N>()),
+        (ProblemKind::CoupledRigidBody, "lgvi10") => on!(coupled_lgvi10::<N>()),
         (kind, _) => return Err(no_stepper(plan, kind.name())),
     };
     Ok(Outcome {

@@ -89,11 +89,13 @@ use num_dual::{DualVec, HyperDualVec};
 
 use tumble_kinematics::so3::hat;
 
+use crate::composition::Composition;
 use crate::error::{Error, check_step};
 use crate::rigid::lgvi::MAX_NEWTON_ITERATIONS;
 use crate::rigid::problem::LieVectorField;
 use crate::rigid::state::{CoupledState, check_coupled_dimension};
 use crate::stepper::Stepper;
+use crate::tables::composition::{KAHAN_LI6, KAHAN_LI8, MCLACHLAN4, SOFRONIOU_SPALETTA10};
 
 /// The scalars models are written in: `f64` and the (hyper-)dual numbers of `num-dual`.
 ///
@@ -321,6 +323,34 @@ pub fn coupled_energy<L: CoupledLagrangian<N> + ?Sized, const N: usize>(
     let (omega, qdot) = coupled_velocities(model, &state.q, &state.momentum, &state.p)?;
     Ok(0.5 * (omega.dot(&state.momentum) + qdot.dot(&state.p))
         + model.potential(&state.rotation, &state.q))
+}
+
+/// `lgvi4` on a coupled model: [`CoupledLgvi`] composed with McLachlan's 5-stage order-4
+/// coefficients.
+#[must_use]
+pub fn coupled_lgvi4<const N: usize>() -> Composition<CoupledLgvi<N>> {
+    Composition::new(&MCLACHLAN4, CoupledLgvi::new())
+}
+
+/// `lgvi6` on a coupled model: [`CoupledLgvi`] composed with Kahan & Li's 9-stage order-6
+/// coefficients.
+#[must_use]
+pub fn coupled_lgvi6<const N: usize>() -> Composition<CoupledLgvi<N>> {
+    Composition::new(&KAHAN_LI6, CoupledLgvi::new())
+}
+
+/// `lgvi8` on a coupled model: [`CoupledLgvi`] composed with Kahan & Li's 17-stage order-8
+/// coefficients.
+#[must_use]
+pub fn coupled_lgvi8<const N: usize>() -> Composition<CoupledLgvi<N>> {
+    Composition::new(&KAHAN_LI8, CoupledLgvi::new())
+}
+
+/// `lgvi10` on a coupled model: [`CoupledLgvi`] composed with Sofroniou & Spaletta's 35-stage
+/// order-10 coefficients.
+#[must_use]
+pub fn coupled_lgvi10<const N: usize>() -> Composition<CoupledLgvi<N>> {
+    Composition::new(&SOFRONIOU_SPALETTA10, CoupledLgvi::new())
 }
 
 /// The variational integrator of a [`CoupledLagrangian`] (see the module doc): order 2,

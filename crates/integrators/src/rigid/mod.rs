@@ -61,13 +61,13 @@ pub mod state;
 
 pub use coupled::{
     CoupledLagrangian, CoupledLgvi, CoupledVectorField, KineticBlocks, Scalar, coupled_energy,
-    coupled_kinetic_gradient, coupled_potential_gradient, coupled_state_from_velocities,
-    coupled_torque, coupled_velocities,
+    coupled_kinetic_gradient, coupled_lgvi4, coupled_lgvi6, coupled_lgvi8, coupled_lgvi10,
+    coupled_potential_gradient, coupled_state_from_velocities, coupled_torque, coupled_velocities,
 };
 pub use diagnostics::{CoupledMonitor, Deviations, Initial, RigidBodyMonitor};
 pub use dmv::Dmv;
 pub use exact::{ExactFlow, FreeRigidBody};
-pub use lgvi::Lgvi;
+pub use lgvi::{LGVI_COMPOSITIONS, Lgvi, lgvi4, lgvi6, lgvi8, lgvi10};
 pub use lie_rk::{CROUCH_GROSSMAN3, CrouchGrossman, LieRkTableau, RKMK4, Rkmk, cg3, rkmk4};
 pub use problem::{EulerEquations, HeavyTop, LieVectorField, RigidBody};
 pub use splitting::{ExactSplitting, ExactStepper, PrincipalAxisSplitting, split4, split6, split8};

@@ -1,5 +1,6 @@
 //! Every rigid-body method keeps `R` on `SO(3)` to round-off: RKMK4 and Crouch–Grossman (only
-//! ever multiply by exponentials) over 2¹⁷ steps, and every method over 10⁴ steps; the
+//! ever multiply by exponentials) over 2¹⁷ steps, and every method (the LGVI compositions
+//! `lgvi4` … `lgvi10` included) over 10⁴ steps; the
 //! diagnostics observers report running maxima equal to those computed by hand.
 
 use tumble_integrators::rigid::{
@@ -51,6 +52,10 @@ fn every_rigid_body_method_stays_on_so3_over_ten_thousand_steps() {
     let h = 0.05;
     for name in [
         "lgvi",
+        "lgvi4",
+        "lgvi6",
+        "lgvi8",
+        "lgvi10",
         "rkmk4",
         "cg3",
         "split2",

@@ -5,7 +5,8 @@ use nalgebra::{Matrix3, SMatrix, SVector, Vector3};
 use tumble_integrators::rigid::{
     CoupledLagrangian, CoupledLgvi, CoupledState, CoupledVectorField, Dmv, EulerEquations,
     ExactSplitting, ExactStepper, FreeRigidBody, GroupState, HeavyTop, KineticBlocks, Lgvi,
-    PrincipalAxisSplitting, RigidBody, RigidBodyState, Scalar, cg3, rkmk4, split4, split6, split8,
+    PrincipalAxisSplitting, RigidBody, RigidBodyState, Scalar, cg3, lgvi4, lgvi6, lgvi8, lgvi10,
+    rkmk4, split4, split6, split8,
 };
 use tumble_integrators::{Driver, Error, FnOde, NoObserver, Observer, Stepper, gauss12};
 use tumble_kinematics::so3::{exp, hat};
@@ -112,6 +113,10 @@ pub fn solve_body<B: RigidBody>(
     let obs = &mut NoObserver;
     match name {
         "lgvi" => run(&mut Lgvi::default(), problem, s0, t_end, h, obs),
+        "lgvi4" => run(&mut lgvi4(), problem, s0, t_end, h, obs),
+        "lgvi6" => run(&mut lgvi6(), problem, s0, t_end, h, obs),
+        "lgvi8" => run(&mut lgvi8(), problem, s0, t_end, h, obs),
+        "lgvi10" => run(&mut lgvi10(), problem, s0, t_end, h, obs),
         "split2" => run(
             &mut PrincipalAxisSplitting::new(),
             problem,
