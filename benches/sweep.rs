@@ -12,8 +12,9 @@
 //! spread, `TUMBLE_BENCH_POINTS`, default 96) run one after another on one thread, timed, and
 //! re-run at the tighter setting of the self-check (half the step, or a tolerance 100 times
 //! smaller) to state how far the metrics moved. The table gives points/s on one core and the
-//! self-check; the map uses the fastest setting whose self-check is ≤ 1e-7
-//! (`crates/studies/src/sweep/tilt-map.sweep.toml` says which and why).
+//! self-check. The fastest setting whose sampled self-check is ≤ 1e-7 is printed last; the
+//! map then checks its choice on the whole grid with `tumble sweep diff` against a run 100
+//! times tighter (`crates/studies/src/sweep/tilt-map.sweep.toml` says which and why).
 //!
 //! ```sh
 //! cargo bench --bench sweep                 # both parts
@@ -177,7 +178,10 @@ fn methods() {
     }
     match best {
         Some((rate, what)) => {
-            println!("fastest with a self-check <= 1e-7: {what} ({rate:.1} points/s on one core)");
+            println!(
+                "fastest with a sampled self-check <= 1e-7: {what} ({rate:.1} points/s on one \
+                 core); check it on the whole grid with `tumble sweep diff`"
+            );
         }
         None => println!("no candidate has a self-check <= 1e-7"),
     }

@@ -41,6 +41,8 @@ pub struct Outcome {
     pub steps: u64,
     /// Right-hand-side evaluations (steps, for methods without a right-hand side).
     pub evaluations: u64,
+    /// The run ended at a terminal event of the scene (a landing), not at the horizon.
+    pub terminated: bool,
 }
 
 /// The error for a plan whose method has no stepper for `kind` (a registry entry without its
@@ -141,6 +143,7 @@ where
         t: report.t,
         steps: report.steps,
         evaluations: counted.evaluations().rhs,
+        terminated: matches!(report.status, tumble_integrators::Status::Terminated(_)),
     })
 }
 
@@ -202,6 +205,7 @@ where
         t,
         steps,
         evaluations: steps,
+        terminated: false,
     })
 }
 
@@ -247,6 +251,7 @@ where
         t: report.t,
         steps: report.steps,
         evaluations: report.steps,
+        terminated: false,
     })
 }
 

@@ -557,6 +557,9 @@ pub struct RunSummary {
     pub max_energy_rel_err: f64,
     /// Rows handed to the recorder.
     pub rows: u64,
+    /// The run ended at a terminal event of the scene (the Coriolis drop's landing) before
+    /// the horizon: its natural end, not a failure.
+    pub terminated: bool,
 }
 
 /// A guide drawn over the map of a sweep of a scene: a line or curve the scene's physics says
@@ -747,16 +750,18 @@ impl<'a, S, F: FnMut(f64, &S, &mut [f64])> RowObserver<'a, S, F> {
     }
 
     /// Writes the final state's row if the cadence skipped it, and returns the run's summary.
-    pub(crate) fn summary(&mut self, t: f64, steps: u64, evaluations: u64) -> RunSummary {
+    pub(crate) fn summary(&mut self, outcome: &crate::dispatch::Outcome) -> RunSummary {
+        let t = outcome.t;
         if self.pending && !self.stopped && t > self.last_written {
             self.write(t);
         }
         RunSummary {
             t,
-            steps,
-            evaluations,
+            steps: outcome.steps,
+            evaluations: outcome.evaluations,
             max_energy_rel_err: self.max_rel,
             rows: self.rows,
+            terminated: outcome.terminated,
         }
     }
 }
@@ -819,5 +824,5 @@ where
     let mut y = y0;
     let mut observer = RowObserver::new(columns, energy_column, plan, row, recorder);
     let outcome = dispatch::run_ode(problem, &mut y, plan, events, &mut observer)?;
-    Ok(observer.summary(outcome.t, outcome.steps, outcome.evaluations))
+    Ok(observer.summary(&outcome))
 }

@@ -349,7 +349,7 @@ fn run_coupled(
         recorder,
     );
     let outcome = dispatch::run_coupled(model, &mut state, plan, &mut observer)?;
-    Ok(observer.summary(outcome.t, outcome.steps, outcome.evaluations))
+    Ok(observer.summary(&outcome))
 }
 
 impl Scene for FreeHoopScene {

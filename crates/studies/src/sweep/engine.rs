@@ -149,7 +149,7 @@ fn metrics_of(def: &SweepDefinition, values: &[f64]) -> Result<Vec<Option<f64>>,
     if let Some(failure) = recorder.failure() {
         return Err(failure.to_string());
     }
-    if !(summary.t >= def.plan.t_end) {
+    if !(summary.t >= def.plan.t_end || summary.terminated) {
         return Err(format!(
             "the run stopped at t = {} before the horizon t_end = {}",
             summary.t, def.plan.t_end

@@ -1,5 +1,6 @@
 //! Integration tests of tumble-studies: one binary, one module per feature.
 
+mod coriolis_landing;
 mod default_accuracy;
 mod fuzz;
 mod max_tilt_reference;

@@ -5,12 +5,12 @@
 //! nothing: Gauss–Legendre 8 at dt = 0.01 s reproduces all eight to 1e-9 (1.4e-10 at worst;
 //! the quartic through step samples it replaced was 6.4e-8 off at (6.6, 1.6)).
 //!
-//! DOP853 at a tolerance of 1e-12 reproduces the six points where the hoop stays far from flat
-//! to 1e-9. Where it nearly lies flat, `τ = asin s` amplifies the error of the smooth signal
-//! `s = |n_z|` by `1/cos τ` (116 at (0.6, 2.75), 28 at (0.8, 2.85)), and there DOP853's own
-//! global error at 1e-12 (about 1e-9 in `s`) shows: 1.2e-7 and 3.5e-8 in `τ`, falling with the
-//! tolerance (2.9e-8 and 7.8e-10 at 1e-13, 1.3e-9 and 1.6e-9 at 1e-14). Those two are checked
-//! in `s`, the quantity the integration controls.
+//! DOP853 at a tolerance of 1e-12 reproduces seven of them to 1e-10 (9.9e-11 at (0.6, 2.75),
+//! where the hoop nearly lies flat). At (0.8, 2.85) it is 2.7e-9 off: there the maximum is
+//! sensitive (d(max)/dω₀ ≈ 200) and `τ = asin s` amplifies the error of the smooth signal
+//! `s = |n_z|` by `1/cos τ ≈ 28`; in `s`, the quantity the integration controls, the error is
+//! 9.8e-11. That point is checked in `s` (≤ 2e-10) and in `τ` at its measured 3e-9, and falls
+//! with the tolerance (1.1e-10 in `τ` at 1e-14).
 
 use tumble_studies::sweep::{SweepDefinition, run_point};
 
@@ -68,9 +68,9 @@ fn max_tilt_matches_the_independent_references_with_gauss8_and_dop853() {
                 "({omega0}, {alpha0}) {}: {got:.10} vs {reference:.10}: {d:.1e} (in sin: {ds:.1e})",
                 run.replace('\n', " ")
             );
-            let nearly_flat = reference.cos() < 0.05;
-            if run.contains("dop853") && nearly_flat {
-                assert!(ds <= 2e-9, "({omega0}, {alpha0}) {run}: {ds:e} in sin tau");
+            if run.contains("dop853") && (omega0, alpha0) == (0.8, 2.85) {
+                assert!(ds <= 2e-10, "({omega0}, {alpha0}) {run}: {ds:e} in sin tau");
+                assert!(d <= 3e-9, "({omega0}, {alpha0}) {run}: {d:e}");
             } else {
                 worst = worst.max(d);
             }
