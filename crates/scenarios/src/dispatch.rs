@@ -25,8 +25,8 @@ use tumble_integrators::rigid::{
     lgvi8, lgvi10, rkmk4, split4, split6, split8,
 };
 use tumble_integrators::{
-    Event, ExplicitRungeKutta, Observer, Ode, Order, ProblemKind, Restepped, Stepper, Tolerances,
-    gauss2, gauss4, gauss6, gauss8, gauss10, gauss12,
+    Event, ExplicitRungeKutta, Observer, Ode, Order, ProblemKind, Report, Restepped, State,
+    Stepper, Tolerances, gauss2, gauss4, gauss6, gauss8, gauss10, gauss12,
 };
 
 use crate::error::SceneError;
@@ -164,19 +164,9 @@ where
     B: RigidBody + Copy,
     O: Observer<RigidBodyState>,
 {
-    let h = fixed_step(plan)?;
-    let driver = plan.driver()?;
-    let dense = plan.times.is_some() || observer.wants_dense_steps();
-    let order = interpolation_order(plan);
     macro_rules! on {
         ($problem:expr, $stepper:expr) => {{
-            let mut stepper = $stepper;
-            let report = if dense {
-                let mut stepper = Restepped::new(stepper, order);
-                driver.run_fixed_with_events(&mut stepper, $problem, state, h, &mut [], observer)?
-            } else {
-                driver.run_fixed(&mut stepper, $problem, state, h, observer)?
-            };
+            let report = run_fixed($stepper, $problem, state, plan, observer)?;
             (report.t, report.steps)
         }};
     }
@@ -224,20 +214,10 @@ where
     L: CoupledLagrangian<N>,
     O: Observer<CoupledState<N>>,
 {
-    let h = fixed_step(plan)?;
-    let driver = plan.driver()?;
-    let dense = plan.times.is_some() || observer.wants_dense_steps();
-    let order = interpolation_order(plan);
     macro_rules! on {
-        ($stepper:expr) => {{
-            let mut stepper = $stepper;
-            if dense {
-                let mut stepper = Restepped::new(stepper, order);
-                driver.run_fixed_with_events(&mut stepper, model, state, h, &mut [], observer)?
-            } else {
-                driver.run_fixed(&mut stepper, model, state, h, observer)?
-            }
-        }};
+        ($stepper:expr) => {
+            run_fixed($stepper, model, state, plan, observer)?
+        };
     }
     let report = match (plan.kind, plan.integrator()) {
         (ProblemKind::CoupledRigidBody, "lgvi") => on!(CoupledLgvi::<N>::new()),
@@ -252,6 +232,26 @@ where
         steps: report.steps,
         evaluations: report.steps,
         terminated: false,
+    })
+}
+
+/// Runs a fixed-step method without an interpolant of its own over the plan: plainly, or
+/// wrapped in [`Restepped`] when the plan asks for output times or the observer for dense
+/// steps (the one place the rigid-body and coupled runs make that choice).
+fn run_fixed<P: ?Sized, S: State, St: Stepper<P, State = S> + Clone, O: Observer<S>>(
+    mut stepper: St,
+    problem: &P,
+    state: &mut S,
+    plan: &RunPlan,
+    observer: &mut O,
+) -> Result<Report<S>, SceneError> {
+    let h = fixed_step(plan)?;
+    let driver = plan.driver()?;
+    Ok(if plan.times.is_some() || observer.wants_dense_steps() {
+        let mut dense = Restepped::new(stepper, interpolation_order(plan));
+        driver.run_fixed_with_events(&mut dense, problem, state, h, &mut [], observer)?
+    } else {
+        driver.run_fixed(&mut stepper, problem, state, h, observer)?
     })
 }
 
