@@ -279,6 +279,7 @@ pub struct SweepManifest {
     points: u64,
     points_per_second: Option<f64>,
     provenance: Provenance,
+    refinement: Option<RefinementJson>,
     resumed_points: u64,
     self_check: Option<SelfCheckJson>,
     shard: String,
@@ -340,6 +341,7 @@ impl SweepManifest {
             points_per_second: (totals.computed > 0 && wall > 0.0)
                 .then(|| totals.computed as f64 / wall),
             provenance: Provenance::now(report.threads),
+            refinement: RefinementJson::new(def, &report.rows),
             resumed_points: report.resumed,
             self_check: self_check.map(|(c, tol)| SelfCheckJson::new(c, tol)),
             shard: shard.to_string(),
@@ -349,6 +351,30 @@ impl SweepManifest {
             tumble_version: env!("CARGO_PKG_VERSION"),
             wall_time_s: wall,
         }
+    }
+}
+
+/// A refined sweep's refinement: its settings, the uniform grid's size and its points per
+/// level.
+#[derive(Serialize)]
+struct RefinementJson {
+    grid_points: u64,
+    levels: u32,
+    metric: String,
+    points_by_level: Vec<u64>,
+    threshold: f64,
+}
+
+impl RefinementJson {
+    fn new(def: &SweepDefinition, rows: &[tumble_studies::sweep::PointRow]) -> Option<Self> {
+        let r = def.refine.as_ref()?;
+        Some(RefinementJson {
+            grid_points: def.points(),
+            levels: r.levels,
+            metric: r.metric.name(),
+            points_by_level: tumble_studies::sweep::refine::points_by_level(def, rows)?,
+            threshold: r.threshold,
+        })
     }
 }
 

@@ -94,9 +94,10 @@ pub(crate) fn draw_plots(
     let mut written = Vec::new();
     let x_label = axis_label(x_axis.parameter, x_axis.unit);
     if def.axes.len() == 1 {
+        // The rows' own x values: a refined sweep has some points of the grid only.
         let slice = plot::slices::Slice {
             label: metric.name().to_string(),
-            points: xs.iter().copied().zip(rows.iter().map(value)).collect(),
+            points: rows.iter().map(|r| (r.values[0], value(r))).collect(),
         };
         let fig = plot::slices::figure(
             format!("{} {horizon}", metric.description()),
@@ -116,12 +117,7 @@ pub(crate) fn draw_plots(
     let y_axis = &def.axes[1];
     let ys = y_axis.grid_values();
     let (nx, ny) = (xs.len(), ys.len());
-    // values[j][i] at (xs[i], ys[j]); points are numbered with the last (y) axis fastest.
-    let mut grid = vec![vec![None; nx]; ny];
-    for row in rows {
-        let (i, j) = ((row.index as usize) / ny, (row.index as usize) % ny);
-        grid[j][i] = value(row);
-    }
+    let grid = painted_grid(def, rows, nx, ny, &value);
     if increasing(&xs) && increasing(&ys) {
         let (markers, curves) = guides(def, &xs);
         let map = plot::heatmap::Heatmap {
@@ -146,8 +142,15 @@ pub(crate) fn draw_plots(
             written.push(name);
         }
     }
-    let slices: Vec<plot::slices::Slice> = plot::slices::pick_rows(ny, 5)
+    // A refined map's slices run along rows of its coarse grid (computed across the whole
+    // range) through the points computed on them.
+    let stride = def.refine.as_ref().map_or(1, |r| 1usize << r.levels);
+    let candidates: Vec<usize> = (0..ny)
+        .filter(|&j| j % stride == 0 || j + 1 == ny)
+        .collect();
+    let slices: Vec<plot::slices::Slice> = plot::slices::pick_rows(candidates.len(), 5)
         .into_iter()
+        .map(|k| candidates[k])
         .map(|j| plot::slices::Slice {
             label: format!(
                 "{} = {}{}",
@@ -163,7 +166,11 @@ pub(crate) fn draw_plots(
                     format!(" {}", y_axis.unit)
                 }
             ),
-            points: xs.iter().copied().zip(grid[j].iter().copied()).collect(),
+            points: rows
+                .iter()
+                .filter(|r| r.index as usize % ny == j)
+                .map(|r| (r.values[0], value(r)))
+                .collect(),
         })
         .collect();
     let fig = plot::slices::figure(
@@ -185,6 +192,43 @@ pub(crate) fn draw_plots(
         written.push(name);
     }
     Ok(written)
+}
+
+/// The map's cells, `values[j][i]` at `(xs[i], ys[j])` (points are numbered with the last
+/// (y) axis fastest). A refined sweep's point of level `ℓ` (of `L`) is drawn at its own size:
+/// it fills the cells within `2^(L−ℓ−1)` grid steps of it, coarse levels first, so that each
+/// finer point covers the part of the coarser ones' cells it refines.
+fn painted_grid(
+    def: &SweepDefinition,
+    rows: &[PointRow],
+    nx: usize,
+    ny: usize,
+    value: &dyn Fn(&PointRow) -> Option<f64>,
+) -> Vec<Vec<Option<f64>>> {
+    let mut grid = vec![vec![None; nx]; ny];
+    let Some(refine) = &def.refine else {
+        for row in rows {
+            let (i, j) = ((row.index as usize) / ny, (row.index as usize) % ny);
+            grid[j][i] = value(row);
+        }
+        return grid;
+    };
+    let mut by_level: Vec<(u32, &PointRow)> = rows
+        .iter()
+        .map(|r| (def.level(r.index).unwrap_or(refine.levels), r))
+        .collect();
+    by_level.sort_by_key(|(level, r)| (*level, r.index));
+    for (level, row) in by_level {
+        let half = (1usize << (refine.levels - level.min(refine.levels))) / 2;
+        let (i, j) = ((row.index as usize) / ny, (row.index as usize) % ny);
+        let v = value(row);
+        for line in &mut grid[j.saturating_sub(half)..=(j + half).min(ny - 1)] {
+            for cell in &mut line[i.saturating_sub(half)..=(i + half).min(nx - 1)] {
+                *cell = v;
+            }
+        }
+    }
+    grid
 }
 
 /// The scene's guides for a map of `def` whose first axis takes the values `xs`: vertical

@@ -54,7 +54,9 @@ pub struct Args {
     pub file: Option<PathBuf>,
     /// Override a key of the sweep: a scene parameter (`g=0`, `theta0=pi/3`), `run.dt`,
     /// `run.tol`, `run.t_end`, `metrics.tilt_threshold`, `random.samples`, `random.seed`,
-    /// `axes.NAME.count`, `axes.NAME.start`, `axes.NAME.end`. Repeat for several.
+    /// `axes.NAME.count`, `axes.NAME.start`, `axes.NAME.end`, `axes.NAME.spacing`,
+    /// `axes.NAME.values`, `run.integrator`, `metrics.tolerance`, `refine.levels`,
+    /// `refine.metric`, `refine.threshold`. Repeat for several.
     #[arg(
         long = "set",
         value_name = "KEY=VALUE",
@@ -62,6 +64,12 @@ pub struct Args {
         action = clap::ArgAction::Append
     )]
     pub set: Vec<String>,
+    /// Refine the grid adaptively: start from every 2^LEVELS-th value of each axis and split,
+    /// level by level, the cells where the sweep's `[refine]` metric changes by more than its
+    /// threshold, down to the grid's own resolution (the same as `--set refine.levels=LEVELS`;
+    /// 0: every point of the grid).
+    #[arg(long, value_name = "LEVELS")]
+    pub refine: Option<u32>,
     /// Output folder [default: out/tilt-map, or out/NAME for a file NAME.sweep.toml].
     #[arg(short = 'o', long = "output", value_name = "DIR")]
     pub output: Option<PathBuf>,
@@ -324,11 +332,18 @@ pub fn run(args: &Args) -> Result<()> {
         None => {}
     }
     // Stage one: everything validated.
-    let overrides = args
+    let mut overrides = args
         .set
         .iter()
         .map(|s| parse_override(s))
         .collect::<Result<Vec<_>>>()?;
+    if let Some(levels) = args.refine {
+        overrides.push(Override {
+            key: "refine.levels".into(),
+            value: OverrideValue::Number(f64::from(levels)),
+            text: format!("refine.levels={levels} (--refine {levels})"),
+        });
+    }
     let def = match &args.file {
         Some(path) => SweepDefinition::load(path, &overrides)?,
         None => SweepDefinition::tilt_map(&overrides)?,
@@ -407,7 +422,7 @@ fn finish(
     let tolerance = check.tolerance(def);
     // The self-check of a whole sweep: spread-out points again at a tighter setting.
     let self_check = if shard == Shard::ALL {
-        let points = sweep::check_points(def, check.size);
+        let points = sweep::check_points_among(def, check.size, &report.rows);
         if points.is_empty() {
             None
         } else {
@@ -441,6 +456,22 @@ fn finish(
             format!(", shard {shard}: {} of them", report.total)
         }
     );
+    if let (Some(r), Some(levels)) = (
+        &def.refine,
+        sweep::refine::points_by_level(def, &report.rows),
+    ) {
+        let per_level: Vec<String> = levels.iter().map(u64::to_string).collect();
+        eprintln!(
+            "refined      {} levels where {} changes by more than {}: {} points, {:.1} % of the \
+             grid (by level: {})",
+            r.levels,
+            r.metric,
+            r.threshold,
+            report.rows.len(),
+            100.0 * report.rows.len() as f64 / def.points() as f64,
+            per_level.join(", ")
+        );
+    }
     eprintln!(
         "integrator   {}, {}, t in [0, {}] s",
         def.plan.integrator(),

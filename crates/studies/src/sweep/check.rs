@@ -83,10 +83,29 @@ impl CheckReport {
     }
 }
 
-/// The points a self-check of `size` re-runs, increasing.
+/// The points a self-check of `size` re-runs, increasing (a grid or random sweep: see
+/// [`check_points_among`] for a refined one).
 #[must_use]
 pub fn check_points(def: &SweepDefinition, size: CheckSize) -> Vec<u64> {
-    let total = def.points();
+    pick(def, size, def.points(), |k| k)
+}
+
+/// The points a self-check of `size` re-runs among a sweep's `rows` (in index order): for a
+/// refined sweep, whose points are not every point of its grid, the grid's corners (always
+/// points of its coarse level) and a spread in index order over the points it has; for others,
+/// [`check_points`]. A refined sweep's points depend on its definition alone, so this does too.
+#[must_use]
+pub fn check_points_among(def: &SweepDefinition, size: CheckSize, rows: &[PointRow]) -> Vec<u64> {
+    if def.refine.is_none() {
+        return check_points(def, size);
+    }
+    pick(def, size, rows.len() as u64, |k| {
+        rows[usize::try_from(k).unwrap_or(usize::MAX).min(rows.len() - 1)].index
+    })
+}
+
+/// The corners of the grid and `total` candidates (the `k`-th is point `at(k)`) evenly spread.
+fn pick(def: &SweepDefinition, size: CheckSize, total: u64, at: impl Fn(u64) -> u64) -> Vec<u64> {
     let wanted = match size {
         CheckSize::Off => return Vec::new(),
         CheckSize::Auto => (total / 100).max(8),
@@ -113,25 +132,25 @@ pub fn check_points(def: &SweepDefinition, size: CheckSize) -> Vec<u64> {
             }
         }
     } else {
-        points.insert(0);
-        points.insert(total - 1);
+        points.insert(at(0));
+        points.insert(at(total - 1));
     }
     // Evenly spread in index order.
     let spread = wanted.saturating_sub(points.len() as u64);
     if spread > 0 {
         for k in 0..spread {
-            let index = if spread == 1 {
+            let rank = if spread == 1 {
                 total / 2
             } else {
                 ((k as f64) * ((total - 1) as f64) / ((spread - 1) as f64)).round() as u64
             };
-            points.insert(index.min(total - 1));
+            points.insert(at(rank.min(total - 1)));
         }
     }
     // Fill up to `wanted` if rounding merged some.
     let mut next = 0;
     while (points.len() as u64) < wanted && next < total {
-        points.insert(next);
+        points.insert(at(next));
         next += 1;
     }
     points.into_iter().collect()

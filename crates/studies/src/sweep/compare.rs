@@ -7,6 +7,8 @@
 //! steps may differ, which is the point. Metrics are matched by name; a metric recorded by one
 //! sweep only is listed, not compared. A point where one sweep has a value and the other none
 //! (a crossing found by one method only, a failed point) is counted apart from the numbers.
+//! A refined sweep holds some points of its grid: it is compared at the points both hold
+//! (against the uniform sweep of its grid: every point it has).
 
 use std::path::Path;
 
@@ -36,7 +38,7 @@ pub struct MetricDifference {
 pub struct SweepDiff {
     /// The axes' parameter names.
     pub axes: Vec<String>,
-    /// Points compared (every point of the grid).
+    /// Points compared: every point of the grid, or those both sweeps hold when one is refined.
     pub points: u64,
     /// One entry per metric both sweeps record, in the first sweep's order.
     pub metrics: Vec<MetricDifference>,
@@ -123,16 +125,24 @@ pub fn diff(
             def_b.points()
         )));
     }
-    for (rows, which) in [(rows_a, "first"), (rows_b, "second")] {
-        if rows.len() as u64 != def_a.points()
-            || rows.iter().enumerate().any(|(i, r)| r.index != i as u64)
-        {
+    for (def, rows, which) in [(def_a, rows_a, "first"), (def_b, rows_b, "second")] {
+        // A refined sweep holds some points of its grid, each once, in index order.
+        let holds = if def.refine.is_some() {
+            rows.windows(2).all(|w| w[0].index < w[1].index)
+                && rows.last().is_none_or(|r| r.index < def.points())
+        } else {
+            rows.len() as u64 == def.points()
+                && rows.iter().enumerate().all(|(i, r)| r.index == i as u64)
+        };
+        if !holds {
             return Err(SweepError::Compare(format!(
-                "the {which} sweep's results do not hold every point once, in order"
+                "the {which} sweep's results do not hold its points once each, in order"
             )));
         }
     }
-    if let Some((ra, rb)) = rows_a.iter().zip(rows_b).find(|(ra, rb)| {
+    // The points both sweeps have (every point when neither is refined).
+    let pairs = shared_points(rows_a, rows_b);
+    if let Some((ra, rb)) = pairs.iter().find(|(ra, rb)| {
         ra.values
             .iter()
             .zip(&rb.values)
@@ -162,7 +172,7 @@ pub fn diff(
             compared: 0,
             defined_in_one: 0,
         };
-        for (ra, rb) in rows_a.iter().zip(rows_b) {
+        for (ra, rb) in &pairs {
             match (ra.metrics[ia], rb.metrics[ib]) {
                 (Some(x), Some(y)) => {
                     d.compared += 1;
@@ -183,20 +193,37 @@ pub fn diff(
     let only = |x: &[String], y: &[String]| -> Vec<String> {
         x.iter().filter(|n| !y.contains(n)).cloned().collect()
     };
-    let status_differs = rows_a
+    let status_differs = pairs
         .iter()
-        .zip(rows_b)
         .filter(|(ra, rb)| ra.status != rb.status)
         .map(|(ra, _)| ra.index)
         .collect();
     Ok(SweepDiff {
         axes,
-        points: def_a.points(),
+        points: pairs.len() as u64,
         metrics,
         only_in_first: only(&ma, &mb),
         only_in_second: only(&mb, &ma),
         status_differs,
     })
+}
+
+/// The rows of the points both `a` and `b` hold (each in index order), paired.
+fn shared_points<'a>(a: &'a [PointRow], b: &'a [PointRow]) -> Vec<(&'a PointRow, &'a PointRow)> {
+    let (mut i, mut j) = (0, 0);
+    let mut out = Vec::with_capacity(a.len().min(b.len()));
+    while i < a.len() && j < b.len() {
+        match a[i].index.cmp(&b[j].index) {
+            std::cmp::Ordering::Less => i += 1,
+            std::cmp::Ordering::Greater => j += 1,
+            std::cmp::Ordering::Equal => {
+                out.push((&a[i], &b[j]));
+                i += 1;
+                j += 1;
+            }
+        }
+    }
+    out
 }
 
 /// `name = value` pairs of a point, for messages.

@@ -8,6 +8,7 @@ use super::draft::Draft;
 use super::file_error::SweepFileError;
 use super::metrics::Metric;
 use super::overrides::Override;
+use super::refine::{Lattice, Refinement};
 use tumble_scenarios::params::Params;
 use tumble_scenarios::scene::{RunPlan, Scene, StepControl};
 use tumble_scenarios::toml_file;
@@ -237,6 +238,8 @@ pub struct SweepDefinition {
     /// `metrics.tolerance`: the largest change of a metric the self-check accepts (the
     /// command line's `--check-tolerance` overrides it; 1e-6 when neither is given).
     pub check_tolerance: Option<f64>,
+    /// `[refine]`: adaptive refinement of the grid (`None`: every point of the grid).
+    pub refine: Option<Refinement>,
 }
 
 impl fmt::Debug for SweepDefinition {
@@ -251,6 +254,7 @@ impl fmt::Debug for SweepDefinition {
             .field("metrics", &self.metrics)
             .field("tilt_threshold", &self.tilt_threshold)
             .field("check_tolerance", &self.check_tolerance)
+            .field("refine", &self.refine)
             .finish()
     }
 }
@@ -347,10 +351,19 @@ impl SweepDefinition {
         }
     }
 
-    /// The header of `results.csv`: `index`, the axes, the metrics, `status`, `reason`.
+    /// The refinement level of point `index` of a refined sweep ([`super::refine`]); `None`
+    /// for a sweep that is not refined.
+    #[must_use]
+    pub fn level(&self, index: u64) -> Option<u32> {
+        Lattice::of(self).map(|l| l.level(index))
+    }
+
+    /// The header of `results.csv`: `index`, `level` (refined sweeps), the axes, the metrics,
+    /// `status`, `reason`.
     #[must_use]
     pub fn columns(&self) -> Vec<String> {
         std::iter::once("index".to_string())
+            .chain(self.refine.is_some().then(|| "level".to_string()))
             .chain(self.axes.iter().map(|a| a.parameter.to_string()))
             .chain(self.metrics.iter().map(|m| m.name().to_string()))
             .chain(["status".to_string(), "reason".to_string()])
@@ -427,6 +440,15 @@ impl SweepDefinition {
         }
         if let Some(tol) = self.check_tolerance {
             let _ = writeln!(s, "tolerance = {}", float(tol));
+        }
+        if let Some(r) = &self.refine {
+            let _ = writeln!(
+                s,
+                "\n[refine]\nlevels = {}\nmetric = {:?}\nthreshold = {}",
+                r.levels,
+                r.metric.name(),
+                float(r.threshold)
+            );
         }
         s
     }

@@ -12,6 +12,7 @@ use super::file_error::{Origin, SweepFileError};
 use super::metrics::Metric;
 use super::overrides::{Override, OverrideValue};
 use super::raw::{RawNumber, RawRun, RawSweep};
+use super::refine::DraftRefine;
 use super::value::{Num, Src};
 use tumble_scenarios::error::SceneError;
 use tumble_scenarios::params::Params;
@@ -50,6 +51,7 @@ pub(super) struct Draft {
     record: Option<Src<Vec<Src<String>>>>,
     tilt_threshold: Option<Src<Num>>,
     check_tolerance: Option<Src<Num>>,
+    refine: Option<DraftRefine>,
 }
 
 impl Draft {
@@ -143,6 +145,16 @@ impl Draft {
             }
             None => (None, None, None),
         };
+        let refine = raw.refine.map(|r| {
+            let span = r.span();
+            let r = r.into_inner();
+            DraftRefine {
+                at: at(span),
+                levels: r.levels.as_ref().map(num),
+                metric: r.metric.as_ref().map(string),
+                threshold: r.threshold.as_ref().map(num),
+            }
+        });
         Ok(Draft {
             origin: origin.to_string(),
             scene: raw.scene.as_ref().map(string),
@@ -157,6 +169,7 @@ impl Draft {
             record,
             tilt_threshold,
             check_tolerance,
+            refine,
         })
     }
 
@@ -230,6 +243,26 @@ impl Draft {
             ["run", "t_end"] => self.t_end = Some(value),
             ["metrics", "tilt_threshold"] => self.tilt_threshold = Some(value),
             ["metrics", "tolerance"] => self.check_tolerance = Some(value),
+            ["refine", field @ ("levels" | "metric" | "threshold")] => {
+                let refine = self.refine.get_or_insert_with(|| DraftRefine {
+                    at: at.clone(),
+                    levels: None,
+                    metric: None,
+                    threshold: None,
+                });
+                match *field {
+                    "levels" => refine.levels = Some(value),
+                    "threshold" => refine.threshold = Some(value),
+                    _ => {
+                        if let OverrideValue::Text(name) = &o.value {
+                            refine.metric = Some(Src {
+                                value: name.clone(),
+                                at: at.clone(),
+                            });
+                        }
+                    }
+                }
+            }
             ["random", which @ ("samples" | "seed")] => {
                 let Some(random) = &mut self.random else {
                     return Err(invalid(
@@ -308,8 +341,9 @@ impl Draft {
                 return Err(invalid(
                     "unknown key; --set takes a scene parameter (NAME or parameters.NAME), \
                      run.integrator, run.dt, run.tol, run.t_end, metrics.tilt_threshold, metrics.tolerance, \
-                     random.samples, random.seed, or axes.NAME.count, axes.NAME.start, \
-                     axes.NAME.end, axes.NAME.spacing, axes.NAME.values"
+                     random.samples, random.seed, axes.NAME.count, axes.NAME.start, \
+                     axes.NAME.end, axes.NAME.spacing, axes.NAME.values, refine.levels, \
+                     refine.metric or refine.threshold"
                         .into(),
                 ));
             }
@@ -357,19 +391,25 @@ impl Draft {
                 Some(x)
             }
         };
+        let sampling = match random {
+            Some((samples, seed)) => Sampling::Random { samples, seed },
+            None => Sampling::Grid,
+        };
+        let refine = match &self.refine {
+            Some(r) => r.validate(sampling, &metrics)?,
+            None => None,
+        };
         let definition = SweepDefinition {
             origin: self.origin.clone(),
             scene,
             params,
             plan,
             axes,
-            sampling: match random {
-                Some((samples, seed)) => Sampling::Random { samples, seed },
-                None => Sampling::Grid,
-            },
+            sampling,
             metrics,
             tilt_threshold,
             check_tolerance,
+            refine,
         };
         self.check_size(&definition, &axis_origins, file_at)?;
         Ok(definition)

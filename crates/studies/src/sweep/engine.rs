@@ -13,6 +13,7 @@ use super::compute::{ComputeRecord, ComputeRun};
 use super::definition::SweepDefinition;
 use super::journal::{self, DEFINITION, JOURNAL, PointRow, RESULTS, Status};
 use super::metrics::MetricRecorder;
+use super::refine::{self, Lattice};
 use super::{Shard, SweepError};
 
 /// How to run a sweep.
@@ -158,18 +159,20 @@ fn metrics_of(def: &SweepDefinition, values: &[f64]) -> Result<Vec<Option<f64>>,
     Ok(recorder.finish(&def.metrics, summary.max_energy_rel_err))
 }
 
-/// Computes `pending` on a pool of `threads` workers, handing each row to `sink` on the
-/// calling thread as soon as it is done. Stops starting points when `cancel` is set or `sink`
-/// fails (whose error is returned).
+/// Computes the `count` points of `pending` on a pool of `threads` workers, handing each row
+/// to `sink` on the calling thread as soon as it is done. The indices are drawn from the
+/// iterator as workers free up, never listed. Stops starting points when `cancel` is set or
+/// `sink` fails (whose error is returned).
 fn execute(
-    pending: &[u64],
+    pending: impl Iterator<Item = u64> + Send,
+    count: u64,
     threads: usize,
     cancel: Option<&AtomicBool>,
     compute: &(dyn Fn(u64) -> PointRow + Sync),
     sink: &mut dyn FnMut(PointRow) -> Result<(), SweepError>,
 ) -> Result<(), SweepError> {
     // No more workers than points: `--threads 100000` on 6 points starts 6.
-    let threads = threads.clamp(1, pending.len().max(1));
+    let threads = clamp_threads(threads, count);
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .thread_name(|i| format!("tumble-sweep-{i}"))
@@ -186,15 +189,12 @@ fn execute(
         let stopped = &stopped;
         scope.spawn(move || {
             pool.install(|| {
-                pending
-                    .par_iter()
-                    .with_max_len(1)
-                    .for_each_with(tx, |tx, &index| {
-                        if !stopped() {
-                            // The receiver is gone only after an error; the point is dropped.
-                            let _ = tx.send(compute(index));
-                        }
-                    });
+                pending.par_bridge().for_each_with(tx, |tx, index| {
+                    if !stopped() {
+                        // The receiver is gone only after an error; the point is dropped.
+                        let _ = tx.send(compute(index));
+                    }
+                });
             });
         });
         let mut result = Ok(());
@@ -207,6 +207,11 @@ fn execute(
         }
         result
     })
+}
+
+/// `threads` clamped to `1 ..= points`.
+fn clamp_threads(threads: usize, points: u64) -> usize {
+    threads.clamp(1, usize::try_from(points.max(1)).unwrap_or(usize::MAX))
 }
 
 /// Prepares `dir` for `def`: returns the journal writer and the rows already finished.
@@ -307,6 +312,10 @@ pub(crate) fn first_difference(stored: &str, new: &str) -> String {
 /// same shard), and a folder that holds none starts afresh. `progress` is called on the
 /// calling thread after each finished point (and once at the start).
 ///
+/// A refined sweep ([`super::refine`]) runs level by level: the shard's coarse cells, then the
+/// points of the cells its results split, and so on; its total grows as levels are added, and
+/// a stopped run resumes at the level it reached.
+///
 /// # Errors
 /// The folder or journal cannot be written, holds another sweep or shard, or its journal is
 /// damaged; the worker threads cannot be started. Failing points are not errors.
@@ -318,41 +327,89 @@ pub fn run(
 ) -> Result<SweepReport, SweepError> {
     let start = Instant::now();
     let (mut writer, mut rows) = open_folder(def, dir, config.shard, config.resume)?;
-    let total = config.shard.size(def.points());
-    let pending: Vec<u64> = (config.shard.index - 1..def.points())
-        .step_by(usize::try_from(config.shard.count).unwrap_or(usize::MAX))
-        .filter(|i| !rows.contains_key(i))
-        .collect();
-    // No more workers than points to compute.
-    let threads = config.threads.clamp(1, pending.len().max(1));
-    let resumed = total - pending.len() as u64;
     let mut state = Progress {
-        total,
-        finished: resumed,
-        resumed,
+        total: rows.len() as u64,
+        finished: rows.len() as u64,
+        resumed: rows.len() as u64,
         failed: rows.values().filter(|r| r.status != Status::Ok).count() as u64,
     };
-    progress(&state);
-    let mut computed = 0;
-    let mut failed = 0;
-    let result = execute(
-        &pending,
-        threads,
-        config.cancel,
-        &|index| run_point(def, index),
-        &mut |row| {
-            writer.push(def, &row)?;
-            computed += 1;
-            state.finished += 1;
-            if row.status != Status::Ok {
-                state.failed += 1;
-                failed += 1;
+    let mut tally = Tally::default();
+    let record = |row: PointRow,
+                  state: &mut Progress,
+                  tally: &mut Tally,
+                  writer: &mut journal::Writer|
+     -> Result<PointRow, SweepError> {
+        writer.push(def, &row)?;
+        tally.computed += 1;
+        state.finished += 1;
+        if row.status != Status::Ok {
+            state.failed += 1;
+            tally.failed += 1;
+        }
+        Ok(row)
+    };
+    let (result, total) = if let Some(lattice) = Lattice::of(def) {
+        // Level by level: each level's points depend on the previous levels' results.
+        progress(&state);
+        let walked = refine::walk(
+            &lattice,
+            config.shard,
+            &mut rows,
+            &mut |missing, needed, rows| {
+                state.total = needed;
+                progress(&state);
+                tally.threads = tally
+                    .threads
+                    .max(clamp_threads(config.threads, missing.len() as u64));
+                execute(
+                    missing.iter().copied(),
+                    missing.len() as u64,
+                    config.threads,
+                    config.cancel,
+                    &|index| run_point(def, index),
+                    &mut |row| {
+                        let row = record(row, &mut state, &mut tally, &mut writer)?;
+                        rows.insert(row.index, row);
+                        progress(&state);
+                        Ok(())
+                    },
+                )
+            },
+        );
+        match walked {
+            Ok(w) => {
+                rows.retain(|i, _| w.needed.contains(i));
+                (Ok(()), w.needed.len() as u64)
             }
-            rows.insert(row.index, row);
-            progress(&state);
-            Ok(())
-        },
-    );
+            Err(e) => (Err(e), 0),
+        }
+    } else {
+        let total = config.shard.size(def.points());
+        state.total = total;
+        progress(&state);
+        let count = total - rows.len() as u64;
+        tally.threads = clamp_threads(config.threads, count);
+        let shard = config.shard;
+        let done = &rows;
+        let pending = (shard.index - 1..def.points())
+            .step_by(usize::try_from(shard.count).unwrap_or(usize::MAX))
+            .filter(|i| !done.contains_key(i));
+        let mut fresh = Vec::new();
+        let result = execute(
+            pending,
+            count,
+            config.threads,
+            config.cancel,
+            &|index| run_point(def, index),
+            &mut |row| {
+                fresh.push(record(row, &mut state, &mut tally, &mut writer)?);
+                progress(&state);
+                Ok(())
+            },
+        );
+        rows.extend(fresh.into_iter().map(|r| (r.index, r)));
+        (result, total)
+    };
     let flushed = writer.flush();
     result?;
     flushed?;
@@ -363,22 +420,30 @@ pub fn run(
         &ComputeRun {
             shard: config.shard,
             host: tumble_output::host_name(),
-            threads,
+            threads: tally.threads.max(1),
             wall_time: elapsed,
-            computed,
-            failed,
+            computed: tally.computed,
+            failed: tally.failed,
             complete: rows.len() as u64 == total,
         },
     )?;
     Ok(SweepReport {
         rows: rows.into_values().collect(),
         total,
-        computed,
-        resumed,
+        computed: tally.computed,
+        resumed: state.resumed,
         elapsed,
-        threads,
+        threads: tally.threads.max(1),
         compute: ComputeRecord::read(dir)?,
     })
+}
+
+/// What a run computed.
+#[derive(Debug, Default)]
+struct Tally {
+    computed: u64,
+    failed: u64,
+    threads: usize,
 }
 
 #[cfg(test)]
@@ -400,10 +465,17 @@ mod tests {
         let pending: Vec<u64> = (0..50).collect();
         for threads in [1, 2, 3] {
             let mut seen = Vec::new();
-            execute(&pending, threads, None, &row, &mut |r| {
-                seen.push(r.index);
-                Ok(())
-            })
+            execute(
+                pending.iter().copied(),
+                pending.len() as u64,
+                threads,
+                None,
+                &row,
+                &mut |r| {
+                    seen.push(r.index);
+                    Ok(())
+                },
+            )
             .unwrap();
             seen.sort_unstable();
             assert_eq!(seen, pending, "{threads} threads");
@@ -414,7 +486,7 @@ mod tests {
     fn a_failing_sink_stops_the_workers_and_returns_its_error() {
         let pending: Vec<u64> = (0..1000).collect();
         let mut n = 0;
-        let e = execute(&pending, 2, None, &row, &mut |_| {
+        let e = execute(pending.iter().copied(), 1000, 2, None, &row, &mut |_| {
             n += 1;
             if n == 3 {
                 Err(SweepError::Merge("disk full".into()))
@@ -436,13 +508,20 @@ mod tests {
             std::thread::sleep(Duration::from_millis(2));
             row(i)
         };
-        execute(&pending, 1, Some(&cancel), &slow, &mut |_| {
-            seen += 1;
-            if seen == 5 {
-                cancel.store(true, Ordering::Relaxed);
-            }
-            Ok(())
-        })
+        execute(
+            pending.iter().copied(),
+            200,
+            1,
+            Some(&cancel),
+            &slow,
+            &mut |_| {
+                seen += 1;
+                if seen == 5 {
+                    cancel.store(true, Ordering::Relaxed);
+                }
+                Ok(())
+            },
+        )
         .unwrap();
         assert!((5..200).contains(&seen), "{seen}");
     }

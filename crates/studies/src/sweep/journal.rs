@@ -157,8 +157,11 @@ fn write_row<W: Write>(
     row: &PointRow,
 ) -> Result<(), SweepError> {
     let reason = row.reason.replace(['\r', '\n'], " ");
-    let mut out = Vec::with_capacity(3 + row.values.len() + row.metrics.len());
+    let mut out = Vec::with_capacity(4 + row.values.len() + row.metrics.len());
     out.push(Field::Whole(row.index));
+    if let Some(level) = def.level(row.index) {
+        out.push(Field::Whole(u64::from(level)));
+    }
     out.extend(row.values.iter().map(|&v| Field::Float(v)));
     for (m, v) in def.metrics.iter().zip(&row.metrics) {
         out.push(match v {
@@ -230,11 +233,13 @@ pub(crate) fn parse_results(
 fn parse_row(def: &SweepDefinition, record: &csv::StringRecord) -> Result<PointRow, String> {
     let n_axes = def.axes.len();
     let n_metrics = def.metrics.len();
-    if record.len() != 3 + n_axes + n_metrics {
+    // A refined sweep's rows carry the point's level after its index.
+    let first = 1 + usize::from(def.refine.is_some());
+    if record.len() != first + 2 + n_axes + n_metrics {
         return Err(format!(
             "{} fields, the header has {}",
             record.len(),
-            3 + n_axes + n_metrics
+            first + 2 + n_axes + n_metrics
         ));
     }
     let index: u64 = record[0]
@@ -246,12 +251,20 @@ fn parse_row(def: &SweepDefinition, record: &csv::StringRecord) -> Result<PointR
             def.points()
         ));
     }
+    if let Some(level) = def.level(index)
+        && record[1] != level.to_string()
+    {
+        return Err(format!(
+            "the level of point {index} is `{}`, the refinement gives {level}",
+            &record[1]
+        ));
+    }
     let number = |s: &str| {
         s.parse::<f64>()
             .map_err(|_| format!("`{s}` is not a number"))
     };
     let values = (0..n_axes)
-        .map(|j| number(&record[1 + j]))
+        .map(|j| number(&record[first + j]))
         .collect::<Result<Vec<_>, _>>()?;
     // The axis values are those of the index: a journal of another sweep is caught here too.
     let expected = def.point(index);
@@ -266,7 +279,7 @@ fn parse_row(def: &SweepDefinition, record: &csv::StringRecord) -> Result<PointR
     }
     let metrics = (0..n_metrics)
         .map(|j| {
-            let s = &record[1 + n_axes + j];
+            let s = &record[first + n_axes + j];
             if s.is_empty() {
                 Ok(None)
             } else {
@@ -274,10 +287,10 @@ fn parse_row(def: &SweepDefinition, record: &csv::StringRecord) -> Result<PointR
             }
         })
         .collect::<Result<Vec<_>, _>>()?;
-    let status = Status::from_name(&record[1 + n_axes + n_metrics]).ok_or_else(|| {
+    let status = Status::from_name(&record[first + n_axes + n_metrics]).ok_or_else(|| {
         format!(
             "status `{}` is none of ok, failed, panicked",
-            &record[1 + n_axes + n_metrics]
+            &record[first + n_axes + n_metrics]
         )
     })?;
     Ok(PointRow {
@@ -285,7 +298,7 @@ fn parse_row(def: &SweepDefinition, record: &csv::StringRecord) -> Result<PointR
         values,
         metrics,
         status,
-        reason: record[2 + n_axes + n_metrics].to_string(),
+        reason: record[first + 1 + n_axes + n_metrics].to_string(),
     })
 }
 
@@ -367,7 +380,9 @@ pub(crate) fn read(
         let line = k + 3;
         let record = record.map_err(|e| corrupt(line, e.to_string()))?;
         let row = parse_row(def, &record).map_err(|reason| corrupt(line, reason))?;
-        if !shard.contains(row.index) {
+        // A refined sweep's shard owns coarse cells, not indices: the points on a face between
+        // two shards' cells belong to both.
+        if def.refine.is_none() && !shard.contains(row.index) {
             return Err(corrupt(
                 line,
                 format!("point {} is not in shard {shard}", row.index),

@@ -1,6 +1,6 @@
 //! Merging the folders of a sharded sweep into the folder an unsharded run writes.
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 use std::fmt;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -9,6 +9,7 @@ use super::compute::ComputeRecord;
 use super::definition::SweepDefinition;
 use super::engine::{SweepReport, first_difference, open_folder};
 use super::journal::{self, DEFINITION, JOURNAL, PointRow};
+use super::refine::{self, Lattice};
 use super::{Shard, SweepError};
 
 /// A shard a merge found unfinished.
@@ -168,16 +169,46 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<(SweepDefinition, SweepRepo
         }
         seen.insert(shard.index, (dir.clone(), contents.rows.len() as u64));
         compute.runs.extend(ComputeRecord::read(dir)?.runs);
-        rows.extend(contents.rows);
+        for (index, row) in contents.rows {
+            // Shards of a refined sweep share the points on the faces between their cells.
+            if let Some(other) = rows.get(&index)
+                && *other != row
+            {
+                return Err(SweepError::Merge(format!(
+                    "point {index} has different results in {} and another shard's folder",
+                    dir.display()
+                )));
+            }
+            rows.insert(index, row);
+        }
     }
     let count = count.unwrap_or(1);
-    // Shards beyond the points have none: nothing to merge from them, present or not.
-    let unfinished: Vec<UnfinishedShard> = (1..=count.min(def.points()))
+    let lattice = Lattice::of(&def);
+    // Shards beyond the points (a refined sweep: beyond its coarse cells) have none: nothing
+    // to merge from them, present or not.
+    let parts = lattice.as_ref().map_or(def.points(), Lattice::coarse_cells);
+    let mut needed = BTreeSet::new();
+    let unfinished: Vec<UnfinishedShard> = (1..=count.min(parts))
         .filter_map(|k| {
             let shard = Shard::new(k, count).ok()?;
-            let points = shard.size(def.points());
+            // A refined shard's points follow from its results: walk its refinement over the
+            // rows at hand; it is finished when no level lacks a point.
+            let (points, done) = match &lattice {
+                Some(lattice) => {
+                    let walked =
+                        refine::walk::<()>(lattice, shard, &mut rows, &mut |_, _, _| Ok(()))
+                            .ok()?;
+                    let n = walked.needed.len() as u64;
+                    needed.extend(walked.needed);
+                    (n, walked.complete)
+                }
+                None => {
+                    let points = shard.size(def.points());
+                    (points, seen.get(&k).is_some_and(|(_, f)| *f == points))
+                }
+            };
             match seen.get(&k) {
-                Some((_, finished)) if *finished == points => None,
+                Some(_) if done => None,
                 Some((dir, finished)) => Some(UnfinishedShard {
                     shard,
                     dir: Some(dir.clone()),
@@ -204,13 +235,16 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<(SweepDefinition, SweepRepo
     // Write the merged folder: definition, then a complete journal in index order, and the
     // compute records of every shard.
     let (mut writer, _) = open_folder(&def, out, Shard::ALL, false)?;
+    if lattice.is_some() {
+        rows.retain(|i, _| needed.contains(i));
+    }
     let rows: Vec<PointRow> = rows.into_values().collect();
     for row in &rows {
         writer.push(&def, row)?;
     }
     writer.flush()?;
     compute.write(out)?;
-    let total = def.points();
+    let total = rows.len() as u64;
     let totals = compute.totals();
     Ok((
         def,

@@ -86,12 +86,15 @@ pub mod merge;
 pub mod metrics;
 mod overrides;
 mod raw;
+pub mod refine;
 mod value;
 
 use std::fmt;
 use std::path::PathBuf;
 
-pub use check::{CheckReport, CheckSize, MetricChange, check_points, self_check};
+pub use check::{
+    CheckReport, CheckSize, MetricChange, check_points, check_points_among, self_check,
+};
 pub use compare::{MetricDifference, SweepDiff, diff, diff_folders, read_folder};
 pub use compute::{COMPUTE, ComputeRecord, ComputeRun, ComputeTotals};
 pub use definition::{Axis, AxisValues, Sampling, Spacing, SweepDefinition};
@@ -101,6 +104,7 @@ pub use journal::{DEFINITION, JOURNAL, PointRow, RESULTS, Status, results_csv};
 pub use merge::{Unfinished, UnfinishedShard, merge};
 pub use metrics::{ColumnOp, Metric};
 pub use overrides::{Override, OverrideValue};
+pub use refine::Refinement;
 
 /// The built-in hoop-tilt map (`tumble sweep` without a file): how far the free hoop tilts
 /// against its initial spin and the bead's starting angle. See the file for the choices.

@@ -7,7 +7,8 @@ pub struct Override {
     /// The key: a scene parameter (`omega0` or `parameters.omega0`), `run.integrator`,
     /// `run.dt` or `run.tol` (each clears the other), `run.t_end`, `metrics.tilt_threshold`,
     /// `random.samples`, `random.seed`, or `axes.NAME.count`, `axes.NAME.start`,
-    /// `axes.NAME.end`, `axes.NAME.spacing` (`linear`, `log`), `axes.NAME.values` (a list).
+    /// `axes.NAME.end`, `axes.NAME.spacing` (`linear`, `log`), `axes.NAME.values` (a list),
+    /// `refine.levels`, `refine.metric` (a name), `refine.threshold`.
     pub key: String,
     /// The value.
     pub value: OverrideValue,
@@ -30,7 +31,9 @@ impl Override {
     /// Whether `key` takes a name rather than a number.
     #[must_use]
     pub fn takes_text(key: &str) -> bool {
-        key == "run.integrator" || (key.starts_with("axes.") && key.ends_with(".spacing"))
+        key == "run.integrator"
+            || key == "refine.metric"
+            || (key.starts_with("axes.") && key.ends_with(".spacing"))
     }
 
     /// Whether `key` takes a list of numbers.

@@ -17,6 +17,7 @@ pub(super) struct RawSweep {
     pub(super) axes: Option<Vec<Spanned<RawAxis>>>,
     pub(super) random: Option<Spanned<RawRandom>>,
     pub(super) metrics: Option<Spanned<RawMetrics>>,
+    pub(super) refine: Option<Spanned<RawRefine>>,
 }
 
 #[derive(Deserialize)]
@@ -51,4 +52,12 @@ pub(super) struct RawMetrics {
     pub(super) record: Option<Spanned<Vec<Spanned<String>>>>,
     pub(super) tilt_threshold: Option<RawNumber>,
     pub(super) tolerance: Option<RawNumber>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawRefine {
+    pub(super) levels: Option<RawNumber>,
+    pub(super) metric: Option<Spanned<String>>,
+    pub(super) threshold: Option<RawNumber>,
 }

@@ -5,4 +5,5 @@ mod default_accuracy;
 mod fuzz;
 mod max_tilt_reference;
 mod method_agreement;
+mod refinement;
 mod work_precision;
