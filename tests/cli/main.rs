@@ -4,6 +4,7 @@ mod hostile;
 mod inertia;
 mod interrupts;
 mod outputs_and_limits;
+mod refine;
 mod scenes;
 mod simulate;
 mod slurm;

@@ -68,8 +68,8 @@ pub struct Args {
     /// level by level, the cells where the sweep's `[refine]` metric changes by more than its
     /// threshold, down to the grid's own resolution (the same as `--set refine.levels=LEVELS`;
     /// 0: every point of the grid).
-    #[arg(long, value_name = "LEVELS")]
-    pub refine: Option<u32>,
+    #[arg(long, value_name = "LEVELS", allow_negative_numbers = true)]
+    pub refine: Option<i64>,
     /// Output folder [default: out/tilt-map, or out/NAME for a file NAME.sweep.toml].
     #[arg(short = 'o', long = "output", value_name = "DIR")]
     pub output: Option<PathBuf>,
@@ -338,9 +338,12 @@ pub fn run(args: &Args) -> Result<()> {
         .map(|s| parse_override(s))
         .collect::<Result<Vec<_>>>()?;
     if let Some(levels) = args.refine {
+        if levels < 0 {
+            bail!("--refine {levels}: expected a whole number of levels, 0 (none) or more");
+        }
         overrides.push(Override {
             key: "refine.levels".into(),
-            value: OverrideValue::Number(f64::from(levels)),
+            value: OverrideValue::Number(levels as f64),
             text: format!("refine.levels={levels} (--refine {levels})"),
         });
     }

@@ -32,6 +32,11 @@
 //! [metrics]
 //! record = ["max_tilt", "final_tilt", "time_tilt_exceeds", "max_energy_rel_err"]
 //! tilt_threshold = 0.5           # rad; needed by (and only by) time_tilt_exceeds
+//!
+//! # [refine]                     # adaptive refinement of a grid (see `refine`)
+//! # levels = 3                   # start from every 8th value; 0: the whole grid
+//! # metric = "max_tilt"          # one of the recorded metrics (default: the first)
+//! # threshold = 0.04             # split a cell whose corners spread by more than this
 //! ```
 //!
 //! Metrics ([`Metric`]): `max_tilt`, `final_tilt`, `time_tilt_exceeds` (hoop scenes, which

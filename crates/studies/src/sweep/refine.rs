@@ -106,7 +106,7 @@ impl Lattice {
     /// The bisection depth at which grid index `c` of an axis of `n` values becomes a cell
     /// boundary (0: a coarse value).
     fn depth(&self, n: u64, c: u64) -> u32 {
-        if c % self.stride == 0 || c + 1 >= n {
+        if c.is_multiple_of(self.stride) || c + 1 >= n {
             return 0;
         }
         let mut lo = c / self.stride * self.stride;
@@ -205,7 +205,7 @@ impl Lattice {
                 None => undefined = true,
             }
         }
-        (defined && undefined) || (defined && hi - lo > self.threshold)
+        defined && (undefined || hi - lo > self.threshold)
     }
 
     /// The children of `cell`: each side spanning two or more grid steps bisected; none when
@@ -264,6 +264,10 @@ pub(crate) struct Walk {
     pub complete: bool,
 }
 
+/// Computes (or looks up) the points a level lacks: `(missing, points needed so far, rows)`.
+pub(crate) type Fill<'a, E> =
+    dyn FnMut(&[u64], u64, &mut BTreeMap<u64, PointRow>) -> Result<(), E> + 'a;
+
 /// Walks the refinement of the coarse cells of `shard`, level by level. At each level the
 /// points the cells need and `rows` lacks are handed to `fill`, which adds what it can to
 /// `rows` (its second argument: every point needed so far); the walk stops, incomplete, at the
@@ -276,7 +280,7 @@ pub(crate) fn walk<E>(
     lattice: &Lattice,
     shard: Shard,
     rows: &mut BTreeMap<u64, PointRow>,
-    fill: &mut dyn FnMut(&[u64], u64, &mut BTreeMap<u64, PointRow>) -> Result<(), E>,
+    fill: &mut Fill<'_, E>,
 ) -> Result<Walk, E> {
     let mut cells: Vec<Cell> = (0..lattice.coarse_cells())
         .filter(|&c| shard.contains(c))
