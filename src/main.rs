@@ -30,6 +30,8 @@ struct Cli {
 
 #[derive(Subcommand, Debug)]
 enum Command {
+    /// The atlas of every integrator on a battery of cases that break integrators
+    HardCases(cmd::hard_cases::Args),
     /// Mass properties of a mesh file (OBJ or STL)
     Inertia(cmd::inertia::Args),
     /// List every integrator: name, order, family, properties
@@ -50,6 +52,7 @@ enum Command {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
+        Command::HardCases(args) => cmd::hard_cases::run(&args),
         Command::Inertia(args) => cmd::inertia::run(&args),
         Command::Integrators(args) => cmd::integrators::run(&args),
         Command::Kinematics(args) => cmd::kinematics::run(&args),
@@ -66,6 +69,8 @@ fn main() -> ExitCode {
                 ExitCode::from(i.code)
             } else if e.is::<cmd::sweep::PointsFailed>() {
                 ExitCode::from(cmd::sweep::PointsFailed::EXIT_CODE)
+            } else if e.is::<cmd::hard_cases::Unfinished>() {
+                ExitCode::from(cmd::hard_cases::Unfinished::EXIT_CODE)
             } else if e.is::<cmd::sweep::NotConverged>() {
                 ExitCode::from(cmd::sweep::NotConverged::EXIT_CODE)
             } else if e.is::<cmd::sweep_diff::Differ>() {

@@ -1,6 +1,7 @@
 //! One module per subcommand: each has its clap `Args` and a `run` returning `anyhow::Result`.
 
 pub mod args;
+pub mod hard_cases;
 pub mod inertia;
 pub mod integrators;
 pub mod kinematics;

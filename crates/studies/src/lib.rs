@@ -6,6 +6,8 @@
 //!   parallel (rayon), each point reduced to metrics while it integrates (nothing stored per
 //!   step), written to a resumable journal, shardable across machines and merged back into the
 //!   same `results.csv` as one run.
+//! * [`hard_cases`] — a named battery of situations that break integrators and the atlas of
+//!   every method on each, at settings chosen by one stated rule.
 //! * [`work_precision`] — the error at the final time against the cost of getting it: ladders
 //!   of steps or tolerances per integrator, a reference solution with its cross-check, fitted
 //!   orders, and long runs for energy drift.
@@ -25,5 +27,6 @@
 //! * **The library never prints**: progress is a callback, failures are typed errors
 //!   ([`sweep::SweepError`], [`tumble_scenarios::SceneError`]).
 
+pub mod hard_cases;
 pub mod sweep;
 pub mod work_precision;

@@ -83,7 +83,7 @@ pub fn final_state(
 }
 
 /// Number of coordinates and rates in a row.
-fn state_len(info: &SceneInfo) -> usize {
+pub(crate) fn state_len(info: &SceneInfo) -> usize {
     let rates = if info.rate_names.is_empty() {
         info.coordinates.len()
     } else {
@@ -376,7 +376,7 @@ pub fn reference_within(
 }
 
 /// `h` adjusted down so that a whole number of steps fits the horizon.
-fn refine_step(h: f64, t_end: f64) -> f64 {
+pub(crate) fn refine_step(h: f64, t_end: f64) -> f64 {
     let n = (t_end / h).ceil().max(1.0);
     t_end / n
 }

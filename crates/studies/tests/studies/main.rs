@@ -3,6 +3,7 @@
 mod coriolis_landing;
 mod default_accuracy;
 mod fuzz;
+mod hard_cases;
 mod max_tilt_reference;
 mod method_agreement;
 mod refinement;

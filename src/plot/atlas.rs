@@ -1,0 +1,251 @@
+//! The hard-case atlas as a figure: methods (rows) × cases (columns), each cell coloured by the
+//! decimal logarithm of the method's error on the case (the final-state error against the
+//! reference, or the energy error where the case has no reference), with its outcome marked:
+//! nothing for `ok`, `!` for a violated property, `×` on grey for a failure, `T` on grey for
+//! a run that reached its time limit; blank where the method cannot run the case's scene.
+
+use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
+
+use super::{DrawResult, Figure, colour, font};
+use tumble_studies::hard_cases::atlas::Status;
+
+/// One cell of the atlas.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Cell {
+    /// The method does not run the case's scene.
+    NotApplicable,
+    /// An entry not computed (the budget ran out).
+    Missing,
+    /// An outcome and the error to colour it by.
+    Entry {
+        /// How it ended.
+        status: Status,
+        /// The error (final state, else energy).
+        error: Option<f64>,
+    },
+}
+
+/// The atlas figure.
+#[derive(Debug, Clone)]
+pub struct Atlas {
+    /// Title.
+    pub title: String,
+    /// Under the title.
+    pub subtitle: String,
+    /// Column labels (case names).
+    pub cases: Vec<String>,
+    /// Row labels (methods).
+    pub methods: Vec<String>,
+    /// `cells[method][case]`.
+    pub cells: Vec<Vec<Cell>>,
+}
+
+/// Colour range of `log10(error)`.
+const LOG_RANGE: (f64, f64) = (-16.0, 0.0);
+/// Grey of failed and timed-out cells.
+const GREY: RGBColor = RGBColor(0xb0, 0xb0, 0xb0);
+
+const CELL_W: u32 = 58;
+const CELL_H: u32 = 22;
+const LEFT: u32 = 120;
+const TOP: u32 = 100;
+const KEY_LINE: u32 = 19;
+
+impl Atlas {
+    fn key_rows(&self) -> u32 {
+        self.cases.len().div_ceil(2) as u32
+    }
+}
+
+impl Figure for Atlas {
+    fn size(&self) -> (u32, u32) {
+        let w = LEFT + CELL_W * self.cases.len().max(1) as u32 + 150;
+        let h =
+            TOP + CELL_H * self.methods.len().max(1) as u32 + 60 + KEY_LINE * self.key_rows() + 20;
+        (w.max(900), h)
+    }
+
+    fn draw<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, plotters::coord::Shift>,
+        s: f64,
+    ) -> DrawResult<DB> {
+        let px = |v: u32| (f64::from(v) * s).round() as i32;
+        root.fill(&WHITE)?;
+        root.draw(&Text::new(
+            self.title.clone(),
+            (px(16), px(12)),
+            font(22.0 * s).color(&BLACK),
+        ))?;
+        root.draw(&Text::new(
+            self.subtitle.clone(),
+            (px(16), px(42)),
+            font(14.0 * s).color(&RGBColor(64, 64, 64)),
+        ))?;
+        // Column numbers (the key below names them).
+        for (j, _) in self.cases.iter().enumerate() {
+            let x = LEFT + CELL_W * j as u32 + CELL_W / 2;
+            root.draw(&Text::new(
+                format!("{}", j + 1),
+                (px(x), px(TOP - 6)),
+                font(14.0 * s)
+                    .color(&BLACK)
+                    .pos(Pos::new(HPos::Center, VPos::Bottom)),
+            ))?;
+        }
+        for (i, method) in self.methods.iter().enumerate() {
+            let y = TOP + CELL_H * i as u32;
+            root.draw(&Text::new(
+                method.clone(),
+                (px(LEFT - 8), px(y + CELL_H / 2)),
+                font(13.0 * s)
+                    .color(&BLACK)
+                    .pos(Pos::new(HPos::Right, VPos::Center)),
+            ))?;
+            for (j, cell) in self.cells[i].iter().enumerate() {
+                let x = LEFT + CELL_W * j as u32;
+                let (fill, mark) = match cell {
+                    Cell::NotApplicable => (WHITE, ""),
+                    Cell::Missing => (WHITE, "…"),
+                    Cell::Entry { status, error } => {
+                        let shade = error
+                            .filter(|e| e.is_finite() && *e > 0.0)
+                            .map_or(GREY, |e| {
+                                colour::viridis(
+                                    (e.log10() - LOG_RANGE.0) / (LOG_RANGE.1 - LOG_RANGE.0),
+                                )
+                            });
+                        match status {
+                            Status::Ok => (shade, ""),
+                            Status::Violated => (shade, "!"),
+                            Status::Failed => (GREY, "×"),
+                            Status::TimeLimit => (GREY, "T"),
+                        }
+                    }
+                };
+                root.draw(&Rectangle::new(
+                    [(px(x), px(y)), (px(x + CELL_W), px(y + CELL_H))],
+                    fill.filled(),
+                ))?;
+                root.draw(&Rectangle::new(
+                    [(px(x), px(y)), (px(x + CELL_W), px(y + CELL_H))],
+                    RGBColor(0xe0, 0xe0, 0xe0).stroke_width((s.round() as u32).max(1)),
+                ))?;
+                if !mark.is_empty() {
+                    // White marks on the dark end of the scale, black elsewhere.
+                    let dark = matches!(cell, Cell::Entry { error: Some(e), status: Status::Violated }
+                        if e.is_finite() && *e > 0.0 && (e.log10() - LOG_RANGE.0) / (LOG_RANGE.1 - LOG_RANGE.0) < 0.45);
+                    root.draw(&Text::new(
+                        mark.to_string(),
+                        (px(x + CELL_W / 2), px(y + CELL_H / 2)),
+                        font(15.0 * s)
+                            .color(if dark { &WHITE } else { &BLACK })
+                            .pos(Pos::new(HPos::Center, VPos::Center)),
+                    ))?;
+                }
+            }
+        }
+        // The colour bar, right of the grid.
+        let bar_x = LEFT + CELL_W * self.cases.len() as u32 + 30;
+        let bar_h = (CELL_H * self.methods.len() as u32).max(200);
+        let steps = 64;
+        for k in 0..steps {
+            let y0 = TOP + bar_h - bar_h * (k + 1) / steps;
+            let y1 = TOP + bar_h - bar_h * k / steps;
+            root.draw(&Rectangle::new(
+                [(px(bar_x), px(y0)), (px(bar_x + 18), px(y1))],
+                colour::viridis((f64::from(k) + 0.5) / f64::from(steps)).filled(),
+            ))?;
+        }
+        for decade in (LOG_RANGE.0 as i32..=LOG_RANGE.1 as i32).step_by(2) {
+            let f = (f64::from(decade) - LOG_RANGE.0) / (LOG_RANGE.1 - LOG_RANGE.0);
+            let y = TOP + bar_h - (f * f64::from(bar_h)).round() as u32;
+            root.draw(&Text::new(
+                format!("1e{decade}"),
+                (px(bar_x + 24), px(y)),
+                font(12.0 * s)
+                    .color(&BLACK)
+                    .pos(Pos::new(HPos::Left, VPos::Center)),
+            ))?;
+        }
+        root.draw(&Text::new(
+            "error".to_string(),
+            (px(bar_x), px(TOP - 6)),
+            font(13.0 * s)
+                .color(&BLACK)
+                .pos(Pos::new(HPos::Left, VPos::Bottom)),
+        ))?;
+        // The key: marks, then the numbered cases in two columns.
+        let key_top = TOP + CELL_H * self.methods.len() as u32 + 24;
+        root.draw(&Text::new(
+            "ok: colour only    ! property violated    × failed (typed error)    T time limit    \
+             … not run (budget)    blank: not applicable"
+                .to_string(),
+            (px(LEFT), px(key_top)),
+            font(13.0 * s).color(&BLACK),
+        ))?;
+        let half = self.key_rows() as usize;
+        for (j, case) in self.cases.iter().enumerate() {
+            let (col, row) = (j / half.max(1), j % half.max(1));
+            root.draw(&Text::new(
+                format!("{}  {case}", j + 1),
+                (
+                    px(LEFT + col as u32 * 330),
+                    px(key_top + 26 + KEY_LINE * row as u32),
+                ),
+                font(13.0 * s).color(&BLACK),
+            ))?;
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_atlas_renders_every_outcome_to_png_and_svg() {
+        let fig = Atlas {
+            title: "hard cases".into(),
+            subtitle: "test".into(),
+            cases: vec!["one".into(), "two".into(), "three".into()],
+            methods: vec!["rk4".into(), "exact".into()],
+            cells: vec![
+                vec![
+                    Cell::Entry {
+                        status: Status::Ok,
+                        error: Some(1e-8),
+                    },
+                    Cell::Entry {
+                        status: Status::Violated,
+                        error: Some(1e-2),
+                    },
+                    Cell::Entry {
+                        status: Status::Failed,
+                        error: None,
+                    },
+                ],
+                vec![
+                    Cell::NotApplicable,
+                    Cell::Missing,
+                    Cell::Entry {
+                        status: Status::TimeLimit,
+                        error: None,
+                    },
+                ],
+            ],
+        };
+        let dir = tempfile::tempdir().unwrap();
+        for name in ["a.png", "a.svg"] {
+            let path = dir.path().join(name);
+            super::super::save(&fig, &path).unwrap();
+            assert!(std::fs::metadata(&path).unwrap().len() > 1000, "{name}");
+        }
+        let svg = std::fs::read_to_string(dir.path().join("a.svg")).unwrap();
+        for text in ["three", "×", "T", "!", "1e-8"] {
+            assert!(svg.contains(text), "{text}");
+        }
+    }
+}
