@@ -1,6 +1,6 @@
 //! The hard-case atlas as a figure: methods (rows) × cases (columns), each cell coloured by the
 //! decimal logarithm of the method's error on the case (the final-state error against the
-//! reference, or the energy error where the case has no reference), with its outcome marked:
+//! reference where the case bounds it, else the energy error), with its outcome marked:
 //! nothing for `ok`, `!` for a violated property, `×` on grey for a failure, `T` on grey for
 //! a run that reached its time limit; blank where the method cannot run the case's scene.
 
