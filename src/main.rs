@@ -30,6 +30,8 @@ struct Cli {
 
 #[derive(Subcommand, Debug)]
 enum Command {
+    /// A scene in motion as an animated GIF: a 3D view of the body with a trail
+    Animate(cmd::animate::Args),
     /// The atlas of every integrator on a battery of cases that break integrators
     HardCases(cmd::hard_cases::Args),
     /// Mass properties of a mesh file (OBJ or STL)
@@ -52,6 +54,7 @@ enum Command {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
+        Command::Animate(args) => cmd::animate::run(&args),
         Command::HardCases(args) => cmd::hard_cases::run(&args),
         Command::Inertia(args) => cmd::inertia::run(&args),
         Command::Integrators(args) => cmd::integrators::run(&args),

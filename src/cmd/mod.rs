@@ -1,5 +1,6 @@
 //! One module per subcommand: each has its clap `Args` and a `run` returning `anyhow::Result`.
 
+pub mod animate;
 pub mod args;
 pub mod hard_cases;
 pub mod inertia;

@@ -109,13 +109,17 @@ impl Figure for Atlas {
                     Cell::NotApplicable => (WHITE, ""),
                     Cell::Missing => (WHITE, "…"),
                     Cell::Entry { status, error } => {
-                        let shade = error
-                            .filter(|e| e.is_finite() && *e > 0.0)
-                            .map_or(GREY, |e| {
-                                colour::viridis(
-                                    (e.log10() - LOG_RANGE.0) / (LOG_RANGE.1 - LOG_RANGE.0),
-                                )
-                            });
+                        // An error of exactly 0 (the exact flow against itself) is drawn at
+                        // the bottom of the scale.
+                        let shade =
+                            error
+                                .filter(|e| e.is_finite() && *e >= 0.0)
+                                .map_or(GREY, |e| {
+                                    colour::viridis(
+                                        (e.max(1e-300).log10() - LOG_RANGE.0)
+                                            / (LOG_RANGE.1 - LOG_RANGE.0),
+                                    )
+                                });
                         match status {
                             Status::Ok => (shade, ""),
                             Status::Violated => (shade, "!"),

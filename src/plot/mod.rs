@@ -19,6 +19,7 @@
 //!   grid of two parameters with a colour bar (the sweep's map) and [`slices`] its rows as
 //!   line series.
 
+pub mod animation;
 pub mod atlas;
 pub mod colour;
 pub mod heatmap;

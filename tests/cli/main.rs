@@ -1,5 +1,6 @@
 //! Tests of the `tumble` binary: one module per subcommand, each running the built binary.
 
+mod animate;
 mod hard_cases;
 mod hostile;
 mod inertia;

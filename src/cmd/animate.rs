@@ -1,0 +1,342 @@
+//! `tumble animate`: a scene in motion as an animated GIF — the hoop as a ring with its bead,
+//! the free body as its equivalent box, the top as its axis and disk — with a trail and a
+//! readout of the time and the energy error. Frames are the scene's rows at equal times, from
+//! the integrator's dense output (`--at`), so the animation does not depend on the steps.
+
+use std::path::PathBuf;
+
+use anyhow::{Result, bail};
+use plotters::style::RGBColor;
+use tumble_integrators::Flow;
+use tumble_scenarios::{Params, Recorder, RunOptions, Scene};
+
+use super::simulate::{LoadedScene, SceneArgs, load_scene};
+use crate::plot::animation::{Line, Shot, View, circle, write_gif};
+
+/// Flags of `tumble animate`.
+#[derive(clap::Args, Debug)]
+pub struct Args {
+    /// The scene and its parameter overrides.
+    #[command(flatten)]
+    pub target: SceneArgs,
+    /// Simulated seconds [default: the scene's horizon].
+    #[arg(long = "t-end", value_name = "T", allow_negative_numbers = true)]
+    pub t_end: Option<f64>,
+    /// Frames per second of the animation.
+    #[arg(long, value_name = "FPS", default_value_t = 25.0)]
+    pub fps: f64,
+    /// Playing time of the animation in seconds [default: the simulated time, at most 20 s].
+    #[arg(long, value_name = "SECONDS")]
+    pub duration: Option<f64>,
+    /// Frame size in pixels, `WxH`.
+    #[arg(long, value_name = "WxH", default_value = "640x480")]
+    pub size: String,
+    /// Output file (`.gif`).
+    #[arg(
+        short = 'o',
+        long = "output",
+        value_name = "FILE",
+        default_value = "out/animation.gif"
+    )]
+    pub output: PathBuf,
+}
+
+/// Keeps every row.
+#[derive(Default)]
+struct Rows(Vec<Vec<f64>>);
+
+impl Recorder for Rows {
+    fn row(&mut self, values: &[f64]) -> Flow {
+        self.0.push(values.to_vec());
+        Flow::Continue
+    }
+}
+
+/// Most frames an animation may have.
+const MAX_FRAMES: u64 = 10_000;
+
+/// Runs the subcommand.
+///
+/// # Errors
+/// Invalid flags (before any step), a scene without a 3D view, a failing run, an unwritable
+/// output.
+pub fn run(args: &Args) -> Result<()> {
+    let LoadedScene { scene, params, .. } = load_scene(&args.target)?;
+    let info = scene.info();
+    let ext = args
+        .output
+        .extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase());
+    match ext.as_deref() {
+        Some("gif") => {}
+        Some("mp4") => bail!(
+            "{}: tumble writes animations as GIF; for an MP4, write a .gif and convert it, e.g. \
+             `ffmpeg -i animation.gif -pix_fmt yuv420p animation.mp4`",
+            args.output.display()
+        ),
+        _ => bail!("{}: expected a .gif file", args.output.display()),
+    }
+    let (w, h) = parse_size(&args.size)?;
+    if !(args.fps.is_finite() && args.fps > 0.0 && args.fps <= 100.0) {
+        bail!(
+            "--fps {}: expected a number of frames per second in (0, 100]",
+            args.fps
+        );
+    }
+    let t_end = args.t_end.unwrap_or(info.default_t_end);
+    if !(t_end.is_finite() && t_end > 0.0) {
+        bail!("--t-end {t_end}: expected a positive number of seconds");
+    }
+    let duration = args.duration.unwrap_or(t_end.min(20.0));
+    if !(duration.is_finite() && duration > 0.0) {
+        bail!("--duration {duration}: expected a positive number of seconds");
+    }
+    let frames = (duration * args.fps).round() as u64 + 1;
+    if frames > MAX_FRAMES {
+        bail!(
+            "--duration {duration} at --fps {}: {frames} frames, more than {MAX_FRAMES}",
+            args.fps
+        );
+    }
+    let painter = Painter::of(scene, &params)?;
+    crate::output::check_all([("-o", args.output.as_path())])?;
+
+    let times: Vec<f64> = (0..frames)
+        .map(|k| t_end * k as f64 / (frames - 1).max(1) as f64)
+        .collect();
+    let plan = RunOptions {
+        t_end: Some(t_end),
+        at: Some(times),
+        ..RunOptions::default()
+    }
+    .resolve(info)?;
+    let mut rows = Rows::default();
+    scene.simulate(&params, &plan, &mut rows)?;
+    let columns = info.columns();
+    let col = |name: &str| columns.iter().position(|c| c == name);
+    let energy = col("energy_rel_err");
+    let mut trail: Vec<[f64; 3]> = Vec::new();
+    let shots: Vec<Shot> = rows
+        .0
+        .iter()
+        .map(|row| {
+            let mut shot = painter.shot(row, &col);
+            if let Some(&tip) = shot.dots.first().map(|(p, _, _)| p) {
+                trail.push(tip);
+                let keep = trail.len().saturating_sub(3 * args.fps as usize);
+                shot.lines.insert(
+                    0,
+                    Line {
+                        points: trail[keep..].to_vec(),
+                        colour: RGBColor(0xE6, 0x9F, 0x00),
+                        width: 1,
+                    },
+                );
+            }
+            shot.caption = format!(
+                "t = {:.2} s{}",
+                row[0],
+                energy.map_or(String::new(), |k| format!(
+                    "    relative energy error {:.1e}",
+                    row[k]
+                ))
+            );
+            shot
+        })
+        .collect();
+    let view = View {
+        size: (w, h),
+        azimuth: 0.6,
+        elevation: 0.35,
+        radius: painter.radius,
+    };
+    let title = format!("{}: {}", info.name, plan.integrator());
+    write_gif(&args.output, &view, &title, &shots, args.fps)?;
+    eprintln!(
+        "animation    {} frames of {} over t in [0, {t_end}] s, {:.1} s at {} fps",
+        shots.len(),
+        info.name,
+        duration,
+        args.fps
+    );
+    eprintln!("output       {}", args.output.display());
+    Ok(())
+}
+
+/// `WxH` in pixels, each 64…4096.
+fn parse_size(text: &str) -> Result<(u32, u32)> {
+    let parsed = text
+        .split_once(['x', 'X'])
+        .and_then(|(w, h)| Some((w.trim().parse().ok()?, h.trim().parse().ok()?)));
+    match parsed {
+        Some((w, h)) if (64..=4096).contains(&w) && (64..=4096).contains(&h) => Ok((w, h)),
+        _ => bail!("--size {text}: expected WxH in pixels, each 64 to 4096, e.g. 640x480"),
+    }
+}
+
+/// What a scene's body looks like.
+enum Look {
+    /// A ring of radius `a` in the body x-y plane, the bead at angle `alpha` on it.
+    FreeHoop { a: f64 },
+    /// A vertical ring turned by `phi` about the vertical (or driven at `omega`).
+    VerticalHoop { a: f64, omega: Option<f64> },
+    /// A box with half-extents along the body axes.
+    Box { half: [f64; 3] },
+    /// A symmetric top: its axis along body z from the pivot and a disk at its end.
+    Top,
+}
+
+/// Draws a scene's rows.
+struct Painter {
+    look: Look,
+    radius: f64,
+}
+
+impl Painter {
+    fn of(scene: &dyn Scene, params: &Params) -> Result<Self> {
+        let name = scene.info().name;
+        let get = |p: &str| params.get(p);
+        Ok(match name {
+            "free-hoop" => {
+                let a = get("a")?;
+                Painter {
+                    look: Look::FreeHoop { a },
+                    radius: 1.2 * a,
+                }
+            }
+            "spinning-hoop" | "driven-hoop" => {
+                let a = get("a")?;
+                Painter {
+                    look: Look::VerticalHoop {
+                        a,
+                        omega: (name == "driven-hoop").then(|| get("omega")).transpose()?,
+                    },
+                    radius: 1.2 * a,
+                }
+            }
+            "free-body" => {
+                // The uniform box with these principal moments: x² ∝ I₂ + I₃ − I₁, ….
+                let (i1, i2, i3) = (get("I1")?, get("I2")?, get("I3")?);
+                let sq = [i2 + i3 - i1, i1 + i3 - i2, i1 + i2 - i3].map(|v| v.max(0.0).sqrt());
+                let top = sq
+                    .iter()
+                    .copied()
+                    .fold(0.0, f64::max)
+                    .max(f64::MIN_POSITIVE);
+                Painter {
+                    look: Look::Box {
+                        half: sq.map(|v| v / top),
+                    },
+                    radius: 1.6,
+                }
+            }
+            "heavy-top" => Painter {
+                look: Look::Top,
+                radius: 1.5,
+            },
+            other => bail!(
+                "animate draws free-hoop, spinning-hoop, driven-hoop, free-body and heavy-top; \
+                 `{other}` has no 3D view"
+            ),
+        })
+    }
+
+    /// The frame of one row; its first dot is the point the trail follows.
+    fn shot(&self, row: &[f64], col: &dyn Fn(&str) -> Option<usize>) -> Shot {
+        let value = |name: &str| col(name).map_or(0.0, |k| row[k]);
+        let blue = RGBColor(0x00, 0x72, 0xB2);
+        let red = RGBColor(0xD5, 0x5E, 0x00);
+        let rotate = |v: [f64; 3]| -> [f64; 3] {
+            let (w, x, y, z) = (value("qw"), value("qx"), value("qy"), value("qz"));
+            let q =
+                nalgebra::UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(w, x, y, z));
+            let r = q * nalgebra::Vector3::new(v[0], v[1], v[2]);
+            [r.x, r.y, r.z]
+        };
+        let mut shot = Shot::default();
+        match self.look {
+            Look::FreeHoop { a } => {
+                let alpha = value("alpha");
+                let (u, v, n) = (
+                    rotate([1.0, 0.0, 0.0]),
+                    rotate([0.0, 1.0, 0.0]),
+                    rotate([0.0, 0.0, 1.0]),
+                );
+                let bead = rotate([a * alpha.cos(), a * alpha.sin(), 0.0]);
+                shot.dots.push((bead, 6, red));
+                shot.lines.push(Line {
+                    points: circle([0.0; 3], u, v, a, 96),
+                    colour: blue,
+                    width: 3,
+                });
+                shot.lines.push(Line {
+                    points: vec![[0.0; 3], n.map(|c| c * 0.5 * a)],
+                    colour: RGBColor(0x00, 0x9E, 0x73),
+                    width: 2,
+                });
+            }
+            Look::VerticalHoop { a, omega } => {
+                let phi = omega.map_or_else(|| value("phi"), |w| w * row[0]);
+                let alpha = value("alpha");
+                let (s, c) = phi.sin_cos();
+                let u = [c, s, 0.0];
+                let bead = [a * alpha.sin() * c, a * alpha.sin() * s, -a * alpha.cos()];
+                shot.dots.push((bead, 6, red));
+                shot.lines.push(Line {
+                    points: circle([0.0; 3], u, [0.0, 0.0, 1.0], a, 96),
+                    colour: blue,
+                    width: 3,
+                });
+            }
+            Look::Box { half } => {
+                let corner =
+                    |sx: f64, sy: f64, sz: f64| rotate([sx * half[0], sy * half[1], sz * half[2]]);
+                // The twelve edges as four closed loops and four struts.
+                for sz in [-1.0, 1.0] {
+                    shot.lines.push(Line {
+                        points: vec![
+                            corner(-1.0, -1.0, sz),
+                            corner(1.0, -1.0, sz),
+                            corner(1.0, 1.0, sz),
+                            corner(-1.0, 1.0, sz),
+                            corner(-1.0, -1.0, sz),
+                        ],
+                        colour: blue,
+                        width: 2,
+                    });
+                }
+                for (sx, sy) in [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)] {
+                    shot.lines.push(Line {
+                        points: vec![corner(sx, sy, -1.0), corner(sx, sy, 1.0)],
+                        colour: blue,
+                        width: 2,
+                    });
+                }
+                // The trail follows the end of the intermediate axis (the Dzhanibekov flip).
+                shot.dots
+                    .insert(0, (rotate([0.0, 1.2 * half[1].max(0.3), 0.0]), 5, red));
+            }
+            Look::Top => {
+                let tip = rotate([0.0, 0.0, 1.0]);
+                shot.dots.push((tip, 4, red));
+                shot.lines.push(Line {
+                    points: vec![[0.0; 3], tip],
+                    colour: RGBColor(0x00, 0x9E, 0x73),
+                    width: 3,
+                });
+                shot.lines.push(Line {
+                    points: circle(
+                        tip,
+                        rotate([1.0, 0.0, 0.0]),
+                        rotate([0.0, 1.0, 0.0]),
+                        0.4,
+                        64,
+                    ),
+                    colour: blue,
+                    width: 3,
+                });
+            }
+        }
+        shot
+    }
+}
