@@ -86,6 +86,7 @@ pub mod merge;
 pub mod metrics;
 mod overrides;
 mod raw;
+pub mod resolution;
 mod value;
 
 use std::fmt;
@@ -101,6 +102,7 @@ pub use journal::{DEFINITION, JOURNAL, PointRow, RESULTS, Status, results_csv};
 pub use merge::{Unfinished, UnfinishedShard, merge};
 pub use metrics::{ColumnOp, Metric};
 pub use overrides::{Override, OverrideValue};
+pub use resolution::{CoarsestPoint, coarsest_point};
 
 /// The built-in hoop-tilt map (`tumble sweep` without a file): how far the free hoop tilts
 /// against its initial spin and the bead's starting angle. See the file for the choices.
