@@ -352,9 +352,7 @@ pub fn run(args: &Args) -> Result<()> {
         check_resolution(&def)?;
     }
     if let Some(seconds) = args.point_seconds {
-        if !(seconds.is_finite() && seconds > 0.0) {
-            bail!("--point-seconds {seconds}: must be a finite, positive number of seconds");
-        }
+        check_point_seconds(seconds)?;
         // Every run of a point (the self-check's included) gets the limit; it is not part of
         // the definition, so a folder resumes whatever the limit.
         def.plan = def.plan.with_deadline(seconds);
@@ -408,7 +406,7 @@ pub fn run(args: &Args) -> Result<()> {
 /// Refuses a sweep whose fixed step does not resolve the fastest initial rotation at one of
 /// its points (the rule `simulate` applies, judged at the corners of the axes:
 /// [`sweep::coarsest_point`]), naming the point and a step that resolves every point.
-fn check_resolution(def: &SweepDefinition) -> Result<()> {
+pub(super) fn check_resolution(def: &SweepDefinition) -> Result<()> {
     let Some(point) =
         sweep::coarsest_point(def).map_err(|e| anyhow::anyhow!("{}: {e}", def.origin))?
     else {
@@ -435,6 +433,15 @@ fn check_resolution(def: &SweepDefinition) -> Result<()> {
             |h| format!("--set run.dt={} or smaller", number(h))
         ),
     );
+}
+
+/// Refuses a `--point-seconds` that is not a finite, positive number of seconds.
+fn check_point_seconds(seconds: f64) -> Result<()> {
+    if seconds.is_finite() && seconds > 0.0 {
+        Ok(())
+    } else {
+        bail!("--point-seconds {seconds}: must be a finite, positive number of seconds")
+    }
 }
 
 /// Writes `results.csv`, the plots and `manifest.json`, prints the summary, and turns failed
