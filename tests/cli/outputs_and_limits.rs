@@ -337,7 +337,7 @@ fn validation_holes_are_closed() {
 }
 
 /// A free-hoop sweep at a fixed step of 0.01 s whose corner `omega0 = 100` turns the hoop by
-/// 1 rad a step.
+/// about 1 rad a step.
 const COARSE_SWEEP: &str = "scene = \"free-hoop\"\n[run]\nintegrator = \"gauss8\"\ndt = 0.01\n\
 t_end = 0.2\n[[axes]]\nparameter = \"omega0\"\nrange = [1.0, 100.0]\ncount = 3\n[[axes]]\n\
 parameter = \"alpha0\"\nvalues = [2.0, 0.5]\n[metrics]\nrecord = [\"max_tilt\"]\n";
@@ -356,7 +356,11 @@ fn a_sweep_whose_step_does_not_resolve_a_corner_is_refused_unless_allowed() {
         err.contains("run.dt = 0.01 does not resolve the initial rotation at point 5 (omega0 = 100, alpha0 = 0.5)"),
         "{err}"
     );
-    assert!(err.contains("|ω| ≈ 100 rad/s turns 1 rad a step"), "{err}");
+    // 100 rad/s of spin and the bead's pendulum frequency √(g/a) = 3.13 rad/s.
+    assert!(
+        err.contains("|ω| ≈ 103 rad/s turns 1.03 rad a step"),
+        "{err}"
+    );
     // Refused before the folder was made.
     assert!(!dir.path().join("refused").exists());
     // The suggested step is accepted, and so is the coarse one when allowed.
@@ -431,4 +435,20 @@ fn a_runaway_sweep_point_fails_at_its_time_limit_and_the_sweep_goes_on() {
             .starts_with("1,3000.0,,failed,integration failed: time limit of 3 s reached at t ="),
         "{results}"
     );
+}
+
+#[test]
+fn a_tiny_hoop_is_refused_for_its_step_not_failed_at_the_first_one() {
+    // a = 1e-9 m: the bead swings at √(g/a) ≈ 10^5 rad/s, which dt = 0.01 s cannot follow
+    // (every integrator failed at t = 0: "stage iteration did not converge").
+    let dir = TempDir::new().unwrap();
+    for scene in ["driven-hoop", "spinning-hoop", "free-hoop"] {
+        let out = crate::support::tumble_in(dir.path(), &["simulate", scene, "--set", "a=1e-9"]);
+        let err = stderr(&out);
+        assert_eq!(out.status.code(), Some(1), "{scene}: {err}");
+        assert!(
+            err.contains("does not resolve the initial rotation") && err.contains("--dt 2e-6"),
+            "{scene}: {err}"
+        );
+    }
 }

@@ -636,7 +636,8 @@ pub trait Scene: Sync {
     /// `h · rate` above [`MAX_ANGLE_PER_STEP`] does not resolve the motion
     /// ([`crate::StepResolution`]). `None`: the scene has no such rate. In each parameter, the
     /// others held, the rate must be largest at an end of any interval (built from `|x|`, `x²`,
-    /// `1/x` of single parameters): a sweep judges only the corners of its axes.
+    /// `1/x` of single parameters and monotone functions of them): a sweep judges only the
+    /// corners of its axes.
     ///
     /// # Errors
     /// (Inside the `Some`) a parameter that is missing.

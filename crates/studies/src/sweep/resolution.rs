@@ -9,7 +9,8 @@
 //! moments of inertia), and every scene's [`tumble_scenarios::Scene::initial_rate`] is, in
 //! each parameter with the others held, largest at an end of any interval: it is built from
 //! `|x|`, `x²` and `1/x` (for `x > 0`) of single parameters, added or multiplied by
-//! non-negative factors of the others (`|ω| + |α̇|`, `|spin| √(1 + 2ε²)`, `√Σ (mᵢ/Iᵢ)²`).
+//! non-negative factors of the others, and monotone functions of those (`|ω| + |α̇| + √(g/a)`,
+//! `|spin| √(1 + 2ε²)`, `√Σ (mᵢ/Iᵢ)²`).
 //! Then the largest rate over the box spanned by the axes is at one of its corners: from any
 //! point, moving one coordinate at a time to the end of its axis where the rate is not
 //! smaller never lowers the rate. So the corners of the axes — each axis at its smallest and
@@ -178,10 +179,10 @@ mod tests {
     fn the_coarsest_corner_is_where_the_rates_are_largest_with_its_grid_index() {
         let def = sweep(AXES, "integrator = \"gauss8\"\ndt = 0.01");
         let p = coarsest_point(&def).unwrap().unwrap();
-        // |omega0| + |alpha_dot0| is largest at omega0 = -30, alpha_dot0 = 3; alpha0 does not
-        // set the rate and stays at its first corner, its smallest value.
+        // |omega0| + |alpha_dot0| + √(g/a) is largest at omega0 = -30, alpha_dot0 = 3; alpha0
+        // does not set the rate and stays at its first corner, its smallest value.
         assert_eq!(p.values, vec![0.1, -30.0, 3.0]);
-        assert_eq!(p.resolution.rate, 33.0);
+        assert_eq!(p.resolution.rate, 33.0 + 9.81f64.sqrt());
         // alpha0 = 0.1 is its value 1, omega0 = -30 value 0, alpha_dot0 = 3 value 0.
         assert_eq!(p.index, Some(5 * 2));
         assert_eq!(def.point(10), p.values);
@@ -224,12 +225,13 @@ mod tests {
         let i = p.index.unwrap();
         assert!(i < 3);
         assert_eq!(def.point(i), p.values);
-        // Below the corner's 101 rad/s: a sample, not the corner.
-        assert!(p.resolution.rate < 101.0);
+        // Below the corner's 101 + √9.81 rad/s: a sample, not the corner.
+        let corner = 101.0 + 9.81f64.sqrt();
+        assert!(p.resolution.rate < corner);
         let many = axes.replace("samples = 3", "samples = 50");
         let def = sweep(&many, "integrator = \"gauss8\"\ndt = 0.01");
         let p = coarsest_point(&def).unwrap().unwrap();
-        assert_eq!((p.index, p.resolution.rate), (None, 101.0));
+        assert_eq!((p.index, p.resolution.rate), (None, corner));
         assert!(!p.resolution.resolved());
     }
 }
