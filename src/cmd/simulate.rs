@@ -18,6 +18,7 @@ use std::time::Instant;
 
 use anyhow::{Context, Result, bail};
 use tumble_integrators::Flow;
+use tumble_scenarios::StepResolution;
 use tumble_scenarios::scene::{CancelFlag, MAX_ANGLE_PER_STEP};
 use tumble_scenarios::scene_file::SceneFile;
 use tumble_scenarios::scenes;
@@ -239,45 +240,38 @@ fn setup(args: &Args) -> Result<Setup> {
     })
 }
 
-/// Refuses a fixed step that turns the initial state's fastest rotation
-/// ([`Scene::initial_rate`]) by more than [`MAX_ANGLE_PER_STEP`] a step, with the bound and a
-/// step that resolves it. Adaptive runs choose their own steps; the exact flow has no step
-/// error.
+/// Refuses a fixed step that does not resolve the initial state's fastest rotation (the rule
+/// of [`StepResolution`], shared with sweeps), with the bound and a step that resolves it.
 fn check_resolution(scene: &dyn Scene, params: &Params, plan: &RunPlan) -> Result<()> {
     let info = scene.info();
-    let StepControl::Fixed(h) = plan.step else {
+    let Some(r) = StepResolution::of(scene, params, plan)
+        .map_err(|e| anyhow::anyhow!("{}: {e}", info.name))?
+    else {
         return Ok(());
     };
-    if plan.method.properties.exact {
-        // The exact flow has no step error: its step only spaces the rows.
-        return Ok(());
-    }
-    let Some(rate) = scene.initial_rate(params) else {
-        return Ok(());
-    };
-    let rate = rate.map_err(|e| anyhow::anyhow!("{}: {e}", info.name))?;
-    let angle = h * rate;
-    if angle > MAX_ANGLE_PER_STEP {
-        let suggested = round_down(0.5 * MAX_ANGLE_PER_STEP / rate);
+    if !r.resolved() {
         bail!(
-            "{}: dt = {} does not resolve the initial rotation: |ω| ≈ {} rad/s turns {} rad a \
-             step, above the bound h·|ω| ≤ {MAX_ANGLE_PER_STEP}; give --dt {} or smaller (or an \
-             adaptive integrator, --integrator dop853), or pass --allow-coarse-step to run anyway",
+            "{}: dt = {} does not resolve the initial rotation: {}; give {} (or an adaptive \
+             integrator, --integrator dop853), or pass --allow-coarse-step to run anyway",
             info.name,
-            number(h),
-            significant(rate),
-            significant(angle),
-            number(suggested)
+            number(r.dt),
+            rate_words(&r),
+            r.suggested_step().map_or_else(
+                || "parameters with a finite rate".to_string(),
+                |h| format!("--dt {} or smaller", number(h))
+            ),
         );
     }
     Ok(())
 }
 
-/// `x` rounded down to one significant digit (`0.00037` → `0.0003`).
-fn round_down(x: f64) -> f64 {
-    let scale = 10f64.powf(x.log10().floor());
-    let r = (x / scale).floor() * scale;
-    if r > 0.0 && r.is_finite() { r } else { x }
+/// `|ω| ≈ R rad/s turns A rad a step, above the bound h·|ω| ≤ 0.5`.
+pub(crate) fn rate_words(r: &StepResolution) -> String {
+    format!(
+        "|ω| ≈ {} rad/s turns {} rad a step, above the bound h·|ω| ≤ {MAX_ANGLE_PER_STEP}",
+        significant(r.rate),
+        significant(r.angle())
+    )
 }
 
 /// `x` to three significant digits (in exponent form outside `[1e-3, 1e7)`).

@@ -23,6 +23,7 @@ use crate::plot;
 use crate::plot::sweep::round_for_label;
 use crate::plot::work_precision::Curve;
 use crate::plot::xy::Series;
+use crate::signals;
 
 /// Flags of `tumble work-precision`.
 #[derive(clap::Args, Debug)]
@@ -70,6 +71,10 @@ pub fn run(args: &Args) -> Result<()> {
         params,
         run: file_options,
     } = load_scene(&args.target)?;
+    // SIGINT and SIGTERM stop the run under way at a step boundary; nothing is written then.
+    signals::flag();
+    let interruptible = signals::Interruptible(scene);
+    let scene: &dyn Scene = &interruptible;
     let info = scene.info();
     for name in &args.integrators {
         if !info.runs(name) {
@@ -130,13 +135,10 @@ pub fn run(args: &Args) -> Result<()> {
         "work-precision  {} ({origin}), t in [0, {t_end}] s",
         info.name
     );
-    let reference = work_precision::reference_within(
-        scene,
-        &params,
-        t_end,
-        Some(config.max_reference_seconds),
-    )
-    .map_err(|e| match e {
+    let reference =
+        work_precision::reference_within(scene, &params, t_end, Some(config.max_reference_seconds));
+    stop_if_interrupted(&dir)?;
+    let reference = reference.map_err(|e| match e {
         tumble_scenarios::SceneError::Integration(tumble_integrators::Error::TimeLimit {
             t,
             seconds,
@@ -179,7 +181,9 @@ pub fn run(args: &Args) -> Result<()> {
             &reference.state,
             &config,
             &mut on_rung,
-        )?;
+        );
+        stop_if_interrupted(&dir)?;
+        let ladder = ladder?;
         eprintln!("  {name:<13} stopped: {}", ladder.stop);
         ladders.push(ladder);
     }
@@ -227,6 +231,23 @@ pub fn run(args: &Args) -> Result<()> {
     print!("{}", summary(&ladders, t_end));
     eprintln!("output          {}", dir.display());
     Ok(())
+}
+
+/// [`signals::Interrupted`] when a signal stopped the work: the study writes its files only
+/// once every run has finished, so nothing of it was written.
+fn stop_if_interrupted(dir: &std::path::Path) -> Result<()> {
+    match signals::interrupted() {
+        Some(code) => Err(signals::Interrupted {
+            code,
+            message: format!(
+                "stopped at a step boundary before any result was written; nothing was kept in \
+                 {}",
+                dir.display()
+            ),
+        }
+        .into()),
+        None => Ok(()),
+    }
 }
 
 /// The files written into the output folder: `STEM.csv`, its plots and `manifest.json`.
@@ -391,7 +412,7 @@ fn cost_at(
 /// `--long`: the energy error of the long-run methods and of the adaptive method of highest
 /// order at a matching cost.
 fn long(
-    scene: &'static dyn Scene,
+    scene: &dyn Scene,
     origin: &str,
     params: &Params,
     args: &Args,
@@ -447,8 +468,12 @@ fn long(
             methods[0].clone()
         };
         let target =
-            work_precision::cost_per_second(scene, params, &base, StepControl::Fixed(h), probe)?;
-        let (tol, cost) = work_precision::matching_tolerance(scene, params, a, target, probe)?;
+            work_precision::cost_per_second(scene, params, &base, StepControl::Fixed(h), probe);
+        stop_if_interrupted(dir)?;
+        let target = target?;
+        let matching = work_precision::matching_tolerance(scene, params, a, target, probe);
+        stop_if_interrupted(dir)?;
+        let (tol, cost) = matching?;
         eprintln!(
             "matching cost   {a} at tol = {tol:e} costs {} per simulated second, {base} at \
              dt = {h} s {} (tolerances 1e-4 … 1e-13 tried)",
@@ -462,6 +487,7 @@ fn long(
         runs.push((a.to_string(), StepControl::Tolerance(tol)));
     }
     let results = work_precision::long_runs(scene, params, &runs, t_end, h, 240);
+    stop_if_interrupted(dir)?;
     let mut csv = csv::Writer::from_writer(Vec::new());
     csv.write_record(["integrator", "control", "t", "max_energy_rel_err"])?;
     let mut lines = Vec::new();

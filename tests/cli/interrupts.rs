@@ -2,10 +2,8 @@
 //! file, keep what is complete and exit 130 or 143.
 
 use std::path::Path;
-use std::process::{Command, Stdio};
-use std::time::{Duration, Instant};
 
-use crate::support::{stderr, succeeds};
+use crate::support::{interrupt, no_panic, stderr, succeeds};
 
 fn entries(dir: &Path) -> Vec<String> {
     let mut v: Vec<String> = std::fs::read_dir(dir)
@@ -16,52 +14,27 @@ fn entries(dir: &Path) -> Vec<String> {
     v
 }
 
-fn signal(pid: u32, name: &str) {
-    let ok = Command::new("kill")
-        .args([format!("-{name}"), pid.to_string()])
-        .status()
-        .unwrap()
-        .success();
-    assert!(ok, "kill -{name} failed");
-}
-
-/// Waits until `ready()` or 60 s.
-fn wait_for(ready: impl Fn() -> bool) {
-    let start = Instant::now();
-    while !ready() {
-        assert!(start.elapsed() < Duration::from_secs(60), "timed out");
-        std::thread::sleep(Duration::from_millis(10));
-    }
-}
-
 #[test]
 fn an_interrupted_simulation_leaves_nothing_and_exits_130() {
     let tmp = tempfile::tempdir().unwrap();
-    let child = Command::new(env!("CARGO_BIN_EXE_tumble"))
-        .current_dir(tmp.path())
-        .args([
-            "simulate",
-            "free-body",
-            "--dt",
-            "1e-6",
-            "--t-end",
-            "1000",
-            "--every",
-            "1000000",
-            "--max-steps",
-            "10000000000",
-            "-o",
-            "big.csv",
-        ])
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
+    let args = [
+        "simulate",
+        "free-body",
+        "--dt",
+        "1e-6",
+        "--t-end",
+        "1000",
+        "--every",
+        "1000000",
+        "--max-steps",
+        "10000000000",
+        "-o",
+        "big.csv",
+    ];
     // The temporary CSV appears once the run has started.
-    wait_for(|| !entries(tmp.path()).is_empty());
-    signal(child.id(), "INT");
-    let out = child.wait_with_output().unwrap();
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(130), "{err}");
+    let (code, err) = interrupt(tmp.path(), &args, || !entries(tmp.path()).is_empty(), "INT");
+    no_panic(code, &err);
+    assert_eq!(code, Some(130), "{err}");
     assert!(
         err.contains("interrupted: free-body stopped at t ="),
         "{err}"
@@ -94,19 +67,16 @@ values = [0.5, 2.0]
 record = ["max_tilt", "final_tilt"]
 "#;
     std::fs::write(tmp.path().join("s.sweep.toml"), sweep).unwrap();
-    let child = Command::new(env!("CARGO_BIN_EXE_tumble"))
-        .current_dir(tmp.path())
-        .args(["sweep", "s.sweep.toml", "-o", "cut", "--threads", "1"])
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
     let journal = tmp.path().join("cut/journal.csv");
     // Some points done.
-    wait_for(|| std::fs::read_to_string(&journal).is_ok_and(|t| t.lines().count() > 8));
-    signal(child.id(), "TERM");
-    let out = child.wait_with_output().unwrap();
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(143), "{err}");
+    let (code, err) = interrupt(
+        tmp.path(),
+        &["sweep", "s.sweep.toml", "-o", "cut", "--threads", "1"],
+        || std::fs::read_to_string(&journal).is_ok_and(|t| t.lines().count() > 8),
+        "TERM",
+    );
+    no_panic(code, &err);
+    assert_eq!(code, Some(143), "{err}");
     assert!(err.contains("run the same command with --resume"), "{err}");
     let left = entries(&tmp.path().join("cut"));
     assert!(!left.iter().any(|f| f == "results.csv"), "{left:?}");
@@ -133,4 +103,71 @@ record = ["max_tilt", "final_tilt"]
         std::fs::read(tmp.path().join("cut/results.csv")).unwrap(),
         std::fs::read(tmp.path().join("whole/results.csv")).unwrap()
     );
+}
+
+/// A work–precision study whose reference takes minutes (gauss12 over 2000 s of the free
+/// hoop at a sixteenth of its step).
+const LONG_WORK_PRECISION: &[&str] = &[
+    "work-precision",
+    "free-hoop",
+    "--t-end",
+    "2000",
+    "--integrators",
+    "rk4",
+    "--max-seconds",
+    "100",
+    "-o",
+    "wp",
+];
+
+#[test]
+fn signals_stop_a_work_precision_study_at_once_and_leave_nothing() {
+    for (signal, code) in [("INT", 130), ("TERM", 143)] {
+        let tmp = tempfile::tempdir().unwrap();
+        let dir = tmp.path();
+        let lock = dir.join("wp/.tumble.lock");
+        let start = std::time::Instant::now();
+        // The lock is taken just before the reference run starts.
+        let (got, err) = interrupt(dir, LONG_WORK_PRECISION, || lock.exists(), signal);
+        no_panic(got, &err);
+        assert_eq!(got, Some(code), "{err}");
+        assert!(
+            err.contains("interrupted: stopped at a step boundary before any result was written"),
+            "{err}"
+        );
+        // Stopped within the run, not after the reference's minutes.
+        assert!(
+            start.elapsed() < std::time::Duration::from_secs(30),
+            "took {:?}",
+            start.elapsed()
+        );
+        // The folder it created is gone again: no result, no temporary file, no lock.
+        assert!(entries(dir).is_empty(), "left behind: {:?}", entries(dir));
+    }
+}
+
+#[test]
+fn a_signal_in_a_long_work_precision_run_leaves_nothing() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path();
+    std::fs::create_dir(dir.join("wp")).unwrap();
+    std::fs::write(dir.join("wp/notes.txt"), "mine").unwrap();
+    let lock = dir.join("wp/.tumble.lock");
+    let args = [
+        "work-precision",
+        "free-hoop",
+        "--long",
+        "--long-steps",
+        "100000000",
+        "--integrators",
+        "gauss4",
+        "-o",
+        "wp",
+    ];
+    let (code, err) = interrupt(dir, &args, || lock.exists(), "INT");
+    no_panic(code, &err);
+    assert_eq!(code, Some(130), "{err}");
+    assert!(err.contains("nothing was kept in wp"), "{err}");
+    // The user's file stays; nothing of the study is there.
+    assert_eq!(entries(&dir.join("wp")), ["notes.txt"]);
 }

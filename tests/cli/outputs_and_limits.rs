@@ -1,5 +1,6 @@
 //! Rows at chosen times, the final state always written, budgets refused before any step, an
-//! unresolved motion reported, and validation holes closed.
+//! unresolved motion reported (a sweep's coarse step refused, a runaway point cut at its time
+//! limit), and validation holes closed.
 
 use tempfile::TempDir;
 
@@ -333,4 +334,121 @@ fn validation_holes_are_closed() {
         &["long.toml:3"],
     );
     assert!(err.len() < 2_000, "{} bytes of error", err.len());
+}
+
+/// A free-hoop sweep at a fixed step of 0.01 s whose corner `omega0 = 100` turns the hoop by
+/// about 1 rad a step.
+const COARSE_SWEEP: &str = "scene = \"free-hoop\"\n[run]\nintegrator = \"gauss8\"\ndt = 0.01\n\
+t_end = 0.2\n[[axes]]\nparameter = \"omega0\"\nrange = [1.0, 100.0]\ncount = 3\n[[axes]]\n\
+parameter = \"alpha0\"\nvalues = [2.0, 0.5]\n[metrics]\nrecord = [\"max_tilt\"]\n";
+
+#[test]
+fn a_sweep_whose_step_does_not_resolve_a_corner_is_refused_unless_allowed() {
+    let dir = TempDir::new().unwrap();
+    std::fs::write(dir.path().join("c.sweep.toml"), COARSE_SWEEP).unwrap();
+    let out = crate::support::tumble_in(
+        dir.path(),
+        &["sweep", "c.sweep.toml", "-o", "refused", "--check", "off"],
+    );
+    let err = stderr(&out);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(
+        err.contains("run.dt = 0.01 does not resolve the initial rotation at point 5 (omega0 = 100, alpha0 = 0.5)"),
+        "{err}"
+    );
+    // 100 rad/s of spin and the bead's pendulum frequency √(g/a) = 3.13 rad/s.
+    assert!(
+        err.contains("|ω| ≈ 103 rad/s turns 1.03 rad a step"),
+        "{err}"
+    );
+    // Refused before the folder was made.
+    assert!(!dir.path().join("refused").exists());
+    // The suggested step is accepted, and so is the coarse one when allowed.
+    succeeds(
+        dir.path(),
+        &[
+            "sweep",
+            "c.sweep.toml",
+            "-o",
+            "fine",
+            "--check",
+            "off",
+            "--set",
+            "run.dt=0.002",
+        ],
+    );
+    let out = crate::support::tumble_in(
+        dir.path(),
+        &[
+            "sweep",
+            "c.sweep.toml",
+            "-o",
+            "coarse",
+            "--check",
+            "off",
+            "--allow-coarse-step",
+        ],
+    );
+    assert!(matches!(out.status.code(), Some(0 | 3)), "{}", stderr(&out));
+    assert!(dir.path().join("coarse/results.csv").is_file());
+}
+
+#[test]
+fn a_runaway_sweep_point_fails_at_its_time_limit_and_the_sweep_goes_on() {
+    // omega0 = 3000 at a tolerance of 1e-12 over 200 s takes minutes; omega0 = 1 a tenth of
+    // a second.
+    let dir = TempDir::new().unwrap();
+    let sweep = "scene = \"free-hoop\"\n[run]\nintegrator = \"dop853\"\ntol = 1e-12\n\
+        t_end = 200.0\n[[axes]]\nparameter = \"omega0\"\nvalues = [1.0, 3000.0]\n[metrics]\n\
+        record = [\"max_tilt\"]\n";
+    std::fs::write(dir.path().join("r.sweep.toml"), sweep).unwrap();
+    let start = std::time::Instant::now();
+    let out = crate::support::tumble_in(
+        dir.path(),
+        &[
+            "sweep",
+            "r.sweep.toml",
+            "-o",
+            "r",
+            "--check",
+            "off",
+            "--point-seconds",
+            "3",
+        ],
+    );
+    assert!(
+        start.elapsed() < std::time::Duration::from_secs(60),
+        "{:?}",
+        start.elapsed()
+    );
+    let err = stderr(&out);
+    assert_eq!(out.status.code(), Some(3), "{err}");
+    assert!(err.contains("1 of 2 points failed"), "{err}");
+    let results = std::fs::read_to_string(dir.path().join("r/results.csv")).unwrap();
+    let rows: Vec<&str> = results.lines().collect();
+    assert!(
+        rows[1].starts_with("0,1.0,") && rows[1].ends_with(",ok,"),
+        "{results}"
+    );
+    assert!(
+        rows[2]
+            .starts_with("1,3000.0,,failed,integration failed: time limit of 3 s reached at t ="),
+        "{results}"
+    );
+}
+
+#[test]
+fn a_tiny_hoop_is_refused_for_its_step_not_failed_at_the_first_one() {
+    // a = 1e-9 m: the bead swings at √(g/a) ≈ 10^5 rad/s, which dt = 0.01 s cannot follow
+    // (every integrator failed at t = 0: "stage iteration did not converge").
+    let dir = TempDir::new().unwrap();
+    for scene in ["driven-hoop", "spinning-hoop", "free-hoop"] {
+        let out = crate::support::tumble_in(dir.path(), &["simulate", scene, "--set", "a=1e-9"]);
+        let err = stderr(&out);
+        assert_eq!(out.status.code(), Some(1), "{scene}: {err}");
+        assert!(
+            err.contains("does not resolve the initial rotation") && err.contains("--dt 2e-6"),
+            "{scene}: {err}"
+        );
+    }
 }

@@ -423,3 +423,44 @@ fn the_compute_record_adds_up_across_resume_and_merge() {
     assert!(m["wall_time_s"].as_f64().unwrap() > 0.0);
     assert!(read(&tmp.path().join("merged/compute.csv")).lines().count() == 4);
 }
+
+#[test]
+fn a_coarse_sweep_is_refused_for_slurm_unless_allowed_and_the_shards_pass_the_limits_on() {
+    let tmp = TempDir::new().unwrap();
+    // omega0 up to 100 rad/s at dt = 0.01: 1 rad a step at the corner.
+    let coarse = sweep(3, 0.2).replace("range = [1.0, 6.0]", "range = [1.0, 100.0]");
+    let file = write(tmp.path(), "coarse.sweep.toml", &coarse);
+    let out = tumble_in(
+        tmp.path(),
+        &["sweep", "slurm", &file, "--shards", "2", "-o", "refused"],
+    );
+    assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
+    assert!(
+        stderr(&out).contains("does not resolve the initial rotation at point 4"),
+        "{}",
+        stderr(&out)
+    );
+    assert!(!tmp.path().join("refused").exists());
+    succeeds(
+        tmp.path(),
+        &[
+            "sweep",
+            "slurm",
+            &file,
+            "--shards",
+            "2",
+            "--allow-coarse-step",
+            "--point-seconds",
+            "30",
+            "-o",
+            "allowed",
+        ],
+    );
+    let script = read(&tmp.path().join("allowed/submit.sh"));
+    assert!(
+        script.contains(
+            r#"--shard "$k/2" --resume --break-lock --allow-coarse-step --point-seconds 30 "#
+        ),
+        "{script}"
+    );
+}

@@ -1,8 +1,9 @@
 //! What every module of the binary's tests needs: the repository root, running `tumble` in a
-//! folder, its stderr, and a run that must succeed.
+//! folder, its stderr, a run that must succeed, and a run interrupted by a signal.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::{Command, Output, Stdio};
+use std::time::{Duration, Instant};
 
 /// The repository root (scene files, meshes).
 pub fn root() -> PathBuf {
@@ -28,4 +29,61 @@ pub fn succeeds(dir: &Path, args: &[&str]) -> Output {
     let out = tumble_in(dir, args);
     assert!(out.status.success(), "{args:?} failed: {}", stderr(&out));
     out
+}
+
+/// Waits until `ready()`, failing after 60 s.
+pub fn wait_for(what: &str, ready: impl Fn() -> bool) {
+    let start = Instant::now();
+    while !ready() {
+        assert!(
+            start.elapsed() < Duration::from_secs(60),
+            "timed out waiting for {what}"
+        );
+        std::thread::sleep(Duration::from_millis(10));
+    }
+}
+
+/// Sends signal `name` (`INT`, `TERM`, `KILL`) to process `pid`.
+pub fn signal(pid: u32, name: &str) {
+    let ok = Command::new("kill")
+        .args([format!("-{name}"), pid.to_string()])
+        .status()
+        .expect("cannot run kill")
+        .success();
+    assert!(ok, "kill -{name} failed");
+}
+
+/// Starts `tumble args` in `dir`, waits for `ready`, sends `signal` and waits for the end;
+/// (exit code, stderr).
+pub fn interrupt(
+    dir: &Path,
+    args: &[&str],
+    ready: impl Fn() -> bool,
+    signal_name: &str,
+) -> (Option<i32>, String) {
+    let child = Command::new(env!("CARGO_BIN_EXE_tumble"))
+        .current_dir(dir)
+        .args(args)
+        .env("RUST_BACKTRACE", "0")
+        .stdin(Stdio::null())
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("cannot run the tumble binary");
+    wait_for("the run to start", ready);
+    signal(child.id(), signal_name);
+    let out = child.wait_with_output().expect("cannot wait for tumble");
+    (
+        out.status.code(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+/// Asserts that a run did not panic (no exit 101, no panic message or backtrace hint).
+pub fn no_panic(code: Option<i32>, err: &str) {
+    assert_ne!(code, Some(101), "{err}");
+    assert!(
+        !err.contains("panicked") && !err.contains("RUST_BACKTRACE"),
+        "{err}"
+    );
 }

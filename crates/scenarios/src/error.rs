@@ -150,4 +150,10 @@ pub enum SceneError {
     /// The integrator failed (non-convergence, non-finite state), with time and state.
     #[error("integration failed: {0}")]
     Integration(#[from] tumble_integrators::Error),
+    /// The run was stopped from outside (a signal) at a step boundary before its horizon.
+    #[error("interrupted at t = {t}")]
+    Interrupted {
+        /// Time reached.
+        t: f64,
+    },
 }

@@ -26,6 +26,7 @@ pub mod dispatch;
 pub mod error;
 pub mod lagrangian;
 pub mod params;
+pub mod resolution;
 pub mod scene;
 pub mod scene_file;
 pub mod scenes;
@@ -34,6 +35,7 @@ pub mod toml_file;
 pub use error::{ModelError, SceneError};
 pub use lagrangian::{EulerLagrange, Lagrangian, LagrangianOde};
 pub use params::{Domain, ParamSpec, Params};
+pub use resolution::StepResolution;
 pub use scene::{
     DenseRows, Guide, Observe, Recorder, RunOptions, RunPlan, RunSummary, Scene, SceneInfo,
     StepControl,

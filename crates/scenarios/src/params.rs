@@ -13,6 +13,8 @@ pub enum Domain {
     NonNegative,
     /// Any finite value (angles, rates).
     Finite,
+    /// Finite and not zero (a spin that sets the whole motion).
+    NonZero,
 }
 
 impl Domain {
@@ -24,6 +26,7 @@ impl Domain {
                 Domain::Positive => value > 0.0,
                 Domain::NonNegative => value >= 0.0,
                 Domain::Finite => true,
+                Domain::NonZero => value != 0.0,
             }
     }
 
@@ -34,6 +37,7 @@ impl Domain {
             Domain::Positive => "must be finite and positive",
             Domain::NonNegative => "must be finite and not negative",
             Domain::Finite => "must be finite",
+            Domain::NonZero => "must be finite and not zero",
         }
     }
 }
@@ -44,6 +48,7 @@ impl fmt::Display for Domain {
             Domain::Positive => "> 0",
             Domain::NonNegative => ">= 0",
             Domain::Finite => "finite",
+            Domain::NonZero => "!= 0",
         })
     }
 }

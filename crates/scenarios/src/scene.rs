@@ -633,8 +633,11 @@ pub trait Scene: Sync {
 
     /// The fastest angular rate (rad/s) of the initial state at `params` (an upper estimate:
     /// spin and relative rates added), against which a fixed step is judged: a step `h` with
-    /// `h · rate` above [`MAX_ANGLE_PER_STEP`] does not resolve the motion. `None`: the scene
-    /// has no such rate.
+    /// `h · rate` above [`MAX_ANGLE_PER_STEP`] does not resolve the motion
+    /// ([`crate::StepResolution`]). `None`: the scene has no such rate. In each parameter, the
+    /// others held, the rate must be largest at an end of any interval (built from `|x|`, `x²`,
+    /// `1/x` of single parameters and monotone functions of them): a sweep judges only the
+    /// corners of its axes.
     ///
     /// # Errors
     /// (Inside the `Some`) a parameter that is missing.

@@ -36,6 +36,7 @@ use tumble_studies::sweep::{
 };
 
 use super::args::{parse_angle, parse_set};
+use super::simulate::{number, rate_words};
 use crate::manifest::{self, SweepManifest};
 use crate::output;
 use crate::plot;
@@ -112,6 +113,20 @@ pub struct Args {
         default_value_t = 30.0
     )]
     pub progress_every: f64,
+    /// Run even when the fixed step turns the fastest initial rotation of some point by more
+    /// than 0.5 rad a step (such a sweep is refused otherwise; the corners of the axes, where
+    /// the rates are largest, are checked).
+    #[arg(long = "allow-coarse-step")]
+    pub allow_coarse_step: bool,
+    /// Fail a point whose run takes longer than this many seconds of wall time (status
+    /// `failed`, a time-limit reason in its row) and go on with the others. Whether a point
+    /// reaches the limit depends on the machine and its load.
+    #[arg(
+        long = "point-seconds",
+        value_name = "S",
+        allow_negative_numbers = true
+    )]
+    pub point_seconds: Option<f64>,
 }
 
 /// The period of progress lines: `None` for 0.
@@ -347,10 +362,19 @@ pub fn run(args: &Args) -> Result<()> {
             text: format!("refine.levels={levels} (--refine {levels})"),
         });
     }
-    let def = match &args.file {
+    let mut def = match &args.file {
         Some(path) => SweepDefinition::load(path, &overrides)?,
         None => SweepDefinition::tilt_map(&overrides)?,
     };
+    if !args.allow_coarse_step {
+        check_resolution(&def)?;
+    }
+    if let Some(seconds) = args.point_seconds {
+        check_point_seconds(seconds)?;
+        // Every run of a point (the self-check's included) gets the limit; it is not part of
+        // the definition, so a folder resumes whatever the limit.
+        def.plan = def.plan.with_deadline(seconds);
+    }
     let threads = match args.threads {
         Some(0) => bail!("--threads 0: at least one worker thread is needed"),
         Some(n) => n,
@@ -395,6 +419,47 @@ pub fn run(args: &Args) -> Result<()> {
         .into());
     }
     finish(&def, &dir, &report, shard, "sweep", check)
+}
+
+/// Refuses a sweep whose fixed step does not resolve the fastest initial rotation at one of
+/// its points (the rule `simulate` applies, judged at the corners of the axes:
+/// [`sweep::coarsest_point`]), naming the point and a step that resolves every point.
+pub(super) fn check_resolution(def: &SweepDefinition) -> Result<()> {
+    let Some(point) =
+        sweep::coarsest_point(def).map_err(|e| anyhow::anyhow!("{}: {e}", def.origin))?
+    else {
+        return Ok(());
+    };
+    let r = &point.resolution;
+    if r.resolved() {
+        return Ok(());
+    }
+    bail!(
+        "{}: run.dt = {} does not resolve the initial rotation at {} ({}): {}; give {} (the \
+         largest rate of the sweep is there), or an adaptive integrator (run.integrator = \
+         \"dop853\" with run.tol), or pass --allow-coarse-step to run anyway",
+        def.origin,
+        number(r.dt),
+        point.index.map_or_else(
+            || "a corner of the axes".to_string(),
+            |i| format!("point {i}")
+        ),
+        point.describe(def),
+        rate_words(r),
+        r.suggested_step().map_or_else(
+            || "axis values with a finite rate".to_string(),
+            |h| format!("--set run.dt={} or smaller", number(h))
+        ),
+    );
+}
+
+/// Refuses a `--point-seconds` that is not a finite, positive number of seconds.
+fn check_point_seconds(seconds: f64) -> Result<()> {
+    if seconds.is_finite() && seconds > 0.0 {
+        Ok(())
+    } else {
+        bail!("--point-seconds {seconds}: must be a finite, positive number of seconds")
+    }
 }
 
 /// Writes `results.csv`, the plots and `manifest.json`, prints the summary, and turns failed

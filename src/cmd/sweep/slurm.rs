@@ -52,6 +52,17 @@ pub struct SlurmArgs {
         action = clap::ArgAction::Append
     )]
     pub set: Vec<String>,
+    /// As for `tumble sweep`: the shards run even when the fixed step does not resolve the
+    /// fastest rate at a corner of the axes.
+    #[arg(long = "allow-coarse-step")]
+    pub allow_coarse_step: bool,
+    /// As for `tumble sweep`: each shard fails a point whose run takes longer than this.
+    #[arg(
+        long = "point-seconds",
+        value_name = "S",
+        allow_negative_numbers = true
+    )]
+    pub point_seconds: Option<f64>,
 }
 
 /// The job script's name in the output folder.
@@ -69,6 +80,8 @@ struct Plan {
     tumble: PathBuf,
     scene: &'static str,
     command_line: String,
+    /// `tumble sweep` flags every shard passes on (` --allow-coarse-step`, ` --point-seconds S`).
+    shard_flags: String,
 }
 
 /// Runs `tumble sweep slurm`.
@@ -82,6 +95,16 @@ pub fn run(args: &SlurmArgs) -> Result<()> {
         .map(|s| parse_override(s))
         .collect::<Result<Vec<_>>>()?;
     let def = SweepDefinition::load(&args.file, &overrides)?;
+    let mut shard_flags = String::new();
+    if args.allow_coarse_step {
+        shard_flags.push_str(" --allow-coarse-step");
+    } else {
+        super::check_resolution(&def)?;
+    }
+    if let Some(seconds) = args.point_seconds {
+        super::check_point_seconds(seconds)?;
+        shard_flags.push_str(&format!(" --point-seconds {seconds}"));
+    }
     let points = def.points();
     if args.shards == 0 {
         bail!("--shards 0: at least one shard is needed");
@@ -144,6 +167,7 @@ pub fn run(args: &SlurmArgs) -> Result<()> {
         tumble,
         scene: def.scene.info().name,
         command_line: std::env::args().collect::<Vec<_>>().join(" "),
+        shard_flags,
     };
 
     // Every check passed: the files.
@@ -381,7 +405,7 @@ array=$(sbatch --parsable --array="$tasks" <<'SHARD_JOB'
 # killed on another node (Slurm never runs two copies of one array task).
 k=$SLURM_ARRAY_TASK_ID
 echo "tumble: shard $k/{n}, job ${{SLURM_ARRAY_JOB_ID}}_$k on $(hostname), start $(date -u +%FT%TZ), restarts ${{SLURM_RESTART_COUNT:-0}}" >&2
-exec {tumble} sweep {sweep_file} --shard "$k/{n}" --resume --break-lock \
+exec {tumble} sweep {sweep_file} --shard "$k/{n}" --resume --break-lock{shard_flags} \
     --threads "${{SLURM_CPUS_PER_TASK:-{cpus}}}" -o "{dir}/shard-$k"
 SHARD_JOB
 )
@@ -425,6 +449,7 @@ echo "results  {dir}/merged/results.csv"
         points = plan.points,
         command_line = plan.command_line.replace('\n', " "),
         cpus = plan.cpus,
+        shard_flags = plan.shard_flags,
     )
 }
 

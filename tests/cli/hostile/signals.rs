@@ -3,10 +3,9 @@
 //! leaves a stale lock and temporary files that the next command into the folder clears.
 
 use std::path::Path;
-use std::process::{Command, Stdio};
-use std::time::{Duration, Instant};
 
 use super::{listing, run_in};
+use crate::support::{interrupt, no_panic};
 
 /// The number of signal cases below (for the suite's count).
 pub const CASES: usize = 6;
@@ -29,53 +28,6 @@ const LONG_SIMULATION: &[&str] = &[
     "-o",
     "big.csv",
 ];
-
-fn wait_for(what: &str, ready: impl Fn() -> bool) {
-    let start = Instant::now();
-    while !ready() {
-        assert!(
-            start.elapsed() < Duration::from_secs(60),
-            "timed out waiting for {what}"
-        );
-        std::thread::sleep(Duration::from_millis(10));
-    }
-}
-
-/// Starts `args` in `dir`, waits for `ready`, sends `signal`; (exit code, stderr).
-fn interrupt(
-    dir: &Path,
-    args: &[&str],
-    ready: impl Fn() -> bool,
-    signal: &str,
-) -> (Option<i32>, String) {
-    let child = Command::new(env!("CARGO_BIN_EXE_tumble"))
-        .current_dir(dir)
-        .args(args)
-        .stdout(Stdio::null())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
-    wait_for("the run to start", ready);
-    let ok = Command::new("kill")
-        .args([format!("-{signal}"), child.id().to_string()])
-        .status()
-        .unwrap()
-        .success();
-    assert!(ok, "kill -{signal} failed");
-    let out = child.wait_with_output().unwrap();
-    (
-        out.status.code(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
-
-fn no_panic(code: Option<i32>, err: &str) {
-    assert_ne!(code, Some(101), "{err}");
-    assert!(
-        !err.contains("panicked") && !err.contains("RUST_BACKTRACE"),
-        "{err}"
-    );
-}
 
 fn journal_lines(dir: &Path) -> usize {
     std::fs::read_to_string(dir.join("sw/journal.csv")).map_or(0, |t| t.lines().count())

@@ -126,6 +126,32 @@ pub const CASES: &[Case] = &[
         "scene = \"free-hoop\"\nsamples = 5\n[run]\nt_end = 0.1\n[[axes]]\nparameter = \"omega0\"\nrange = [1.0, 2.0]\ncount = 3\n[metrics]\nrecord = [\"max_tilt\"]\n",
         "s.sweep.toml"
     ),
+    sweep_case!(
+        "sweep step too coarse at a corner",
+        "scene = \"free-hoop\"\n[run]\nintegrator = \"gauss8\"\ndt = 0.01\nt_end = 1.0\n[[axes]]\nparameter = \"omega0\"\nrange = [1.0, 100.0]\ncount = 3\n[[axes]]\nparameter = \"alpha0\"\nvalues = [2.0, 0.5]\n[metrics]\nrecord = [\"max_tilt\"]\n",
+        "run.dt = 0.01 does not resolve",
+        "point 5 (omega0 = 100, alpha0 = 0.5)",
+        "--set run.dt=0.002",
+        "--allow-coarse-step"
+    ),
+    sweep_case!(
+        "random sweep step too coarse at a corner",
+        "scene = \"free-hoop\"\n[run]\nintegrator = \"gauss8\"\ndt = 0.01\nt_end = 1.0\n[[axes]]\nparameter = \"omega0\"\nrange = [1.0, 100.0]\n[random]\nsamples = 1000\nseed = 1\n[metrics]\nrecord = [\"max_tilt\"]\n",
+        "a corner of the axes (omega0 = 100)",
+        "--set run.dt=0.002"
+    ),
+    Case::new(
+        "sweep point time limit zero",
+        &["sweep", "--point-seconds", "0", "-o", "out"],
+        1,
+        &["--point-seconds 0", "positive"],
+    ),
+    Case::new(
+        "sweep point time limit not a number",
+        &["sweep", "--point-seconds", "NaN", "-o", "out"],
+        1,
+        &["--point-seconds NaN"],
+    ),
     Case::new("sweep file binary", SWEEP, 1, &["s.sweep.toml"])
         .files(&[("s.sweep.toml", Bytes(b"\xff\xfe\x00\x00\x01binary"))]),
     Case::new(

@@ -42,7 +42,7 @@ use tumble_integrators::{Ode, ProblemKind};
 use tumble_kinematics::EulerConvention;
 use tumble_kinematics::so3::hat;
 
-use super::hoop::{HoopParams, critical_spin, critical_spin_guide, tilt_from_normal};
+use super::hoop::{HoopParams, critical_spin, critical_spin_guide, hoop_rate, tilt_from_normal};
 use crate::dispatch;
 use crate::error::SceneError;
 use crate::params::{Domain, ParamSpec, Params};
@@ -358,11 +358,7 @@ impl Scene for FreeHoopScene {
     }
 
     fn initial_rate(&self, params: &Params) -> Option<Result<f64, SceneError>> {
-        Some(
-            params
-                .get("omega0")
-                .and_then(|w| Ok(w.abs() + params.get("alpha_dot0")?.abs())),
-        )
+        Some(hoop_rate(params, "omega0"))
     }
 
     fn simulate(

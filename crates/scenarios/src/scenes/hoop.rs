@@ -341,6 +341,14 @@ const ALPHA_DOT0_SPEC: ParamSpec = ParamSpec {
     domain: Domain::Finite,
 };
 
+/// The fastest rate of a hoop scene's initial state (an upper estimate): the spin (parameter
+/// `spin`) and the bead's rate added to the bead's pendulum frequency `√(g/a)` — each largest
+/// at an end of any interval of its parameter, as sweeps need ([`Scene::initial_rate`]).
+pub(crate) fn hoop_rate(params: &Params, spin: &str) -> Result<f64, SceneError> {
+    let pendulum = (params.get("g")? / params.get("a")?).sqrt();
+    Ok(params.get(spin)?.abs() + params.get("alpha_dot0")?.abs() + pendulum)
+}
+
 fn hoop_params(params: &Params) -> Result<HoopParams, SceneError> {
     Ok(HoopParams::new(
         params.get("M")?,
@@ -407,11 +415,7 @@ impl Scene for DrivenHoopScene {
     }
 
     fn initial_rate(&self, params: &Params) -> Option<Result<f64, SceneError>> {
-        Some(
-            params
-                .get("omega")
-                .and_then(|w| Ok(w.abs() + params.get("alpha_dot0")?.abs())),
-        )
+        Some(hoop_rate(params, "omega"))
     }
 
     fn simulate(
@@ -534,11 +538,7 @@ impl Scene for SpinningHoopScene {
     }
 
     fn initial_rate(&self, params: &Params) -> Option<Result<f64, SceneError>> {
-        Some(
-            params
-                .get("omega0")
-                .and_then(|w| Ok(w.abs() + params.get("alpha_dot0")?.abs())),
-        )
+        Some(hoop_rate(params, "omega0"))
     }
 
     fn simulate(

@@ -357,7 +357,7 @@ static DZHANIBEKOV_SPECS: [ParamSpec; 3] = [
         20.0,
         "rad/s",
         "initial spin about the intermediate principal axis",
-        Domain::Finite,
+        Domain::NonZero,
     ),
     spec(
         "perturbation",

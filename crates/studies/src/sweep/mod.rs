@@ -92,6 +92,7 @@ pub mod metrics;
 mod overrides;
 mod raw;
 pub mod refine;
+pub mod resolution;
 mod value;
 
 use std::fmt;
@@ -110,6 +111,7 @@ pub use merge::{Unfinished, UnfinishedShard, merge};
 pub use metrics::{ColumnOp, Metric};
 pub use overrides::{Override, OverrideValue};
 pub use refine::Refinement;
+pub use resolution::{CoarsestPoint, coarsest_point};
 
 /// The built-in hoop-tilt map (`tumble sweep` without a file): how far the free hoop tilts
 /// against its initial spin and the bead's starting angle. See the file for the choices.
