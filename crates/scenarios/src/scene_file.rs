@@ -8,8 +8,9 @@
 //! scene = "spinning-hoop"
 //!
 //! # Parameters of that scene; any omitted one keeps its default. Values are numbers
-//! # (integers are taken as exact floats); `inf` and `nan` are rejected like any value outside
-//! # the parameter's domain.
+//! # (integers are taken as exact floats) or angle expressions as strings, with the grammar
+//! # of `--set` (`"pi/2"`, `"-3pi/4"`, `"2*pi"`); `inf` and `nan` are rejected like any value
+//! # outside the parameter's domain.
 //! [parameters]
 //! M = 1.0
 //! a = 0.4
@@ -213,20 +214,11 @@ impl Source<'_> {
         key_span: &Range<usize>,
         value: &Spanned<toml::Value>,
     ) -> Result<f64, SceneFileError> {
-        match value.get_ref() {
-            toml::Value::Float(x) => Ok(*x),
-            toml::Value::Integer(i) if (*i as f64) as i64 == *i => Ok(*i as f64),
-            other => Err(SceneFileError::NotANumber {
-                at: self.at(key_span),
-                key: key.to_string(),
-                found: match other {
-                    toml::Value::Integer(i) => {
-                        format!("the integer {i}, which a float cannot hold exactly")
-                    }
-                    _ => describe(other),
-                },
-            }),
-        }
+        toml_file::number_or_angle(value.get_ref()).map_err(|found| SceneFileError::NotANumber {
+            at: self.at(key_span),
+            key: key.to_string(),
+            found,
+        })
     }
 }
 
@@ -522,6 +514,31 @@ mod tests {
         }
         let e = parse("scene = \"driven-hoop\"\n[parameters]\nomega = nan\n").unwrap_err();
         assert!(e.to_string().contains("must be finite"), "{e}");
+    }
+
+    #[test]
+    fn parameters_take_angle_expressions_as_strings_like_set() {
+        let file =
+            parse("scene = \"free-hoop\"\n[parameters]\ntheta0 = \"pi/2\"\nalpha0 = \"-3pi/4\"\n")
+                .unwrap();
+        assert_eq!(
+            file.params.get("theta0").unwrap(),
+            std::f64::consts::PI / 2.0
+        );
+        assert_eq!(
+            file.params.get("alpha0").unwrap(),
+            -3.0 * std::f64::consts::PI / 4.0
+        );
+        let e = parse("scene = \"free-hoop\"\n[parameters]\n\ntheta0 = \"2**pi\"\n").unwrap_err();
+        assert!(matches!(e, SceneFileError::NotANumber { .. }), "{e}");
+        assert_eq!(line_of(&e), 4, "{e}");
+        let message = e.to_string();
+        assert!(message.contains("parameters.theta0"), "{message}");
+        assert!(message.contains("2**pi"), "{message}");
+        assert!(message.contains("angle expressions such as"), "{message}");
+        // The value still goes through the parameter's domain check.
+        let e = parse("scene = \"free-hoop\"\n[parameters]\na = \"-pi\"\n").unwrap_err();
+        assert!(e.to_string().contains("parameters.a"), "{e}");
     }
 
     #[test]
