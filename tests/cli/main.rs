@@ -2,6 +2,7 @@
 
 mod hostile;
 mod inertia;
+mod inertia_sources;
 mod interrupts;
 mod outputs_and_limits;
 mod scenes;

@@ -84,6 +84,7 @@
 //! - H. Goldstein, C. Poole, J. Safko, *Classical Mechanics*, 3rd ed. (2002), ch. 5: the
 //!   inertia tensor, principal axes, the parallel-axis theorem.
 
+pub mod body;
 pub mod error;
 pub mod euler;
 pub mod io;
@@ -95,6 +96,7 @@ pub mod shapes;
 mod sum;
 pub mod t_handle;
 
+pub use body::{BodyError, Placement, Shape, Units, parse_points};
 pub use error::{Edge, InertiaError, LoadError, MeshError};
 pub use euler::off_diagonal_norm;
 pub use io::{MeshFormat, load_mesh, load_obj, load_stl, parse_obj, parse_stl};
