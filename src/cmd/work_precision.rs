@@ -69,6 +69,7 @@ pub fn run(args: &Args) -> Result<()> {
         origin,
         params,
         run: file_options,
+        ..
     } = load_scene(&args.target)?;
     let info = scene.info();
     for name in &args.integrators {
