@@ -1,5 +1,6 @@
 //! Tests of the `tumble` binary: one module per subcommand, each running the built binary.
 
+mod body_scenes;
 mod hostile;
 mod inertia;
 mod inertia_sources;
