@@ -280,7 +280,7 @@ fn assemble(args: &Args, flags: &Ordered) -> Result<Assembled> {
     for path in &args.points {
         let file = path.display().to_string();
         let text = std::fs::read_to_string(path).with_context(|| format!("{file}: cannot read"))?;
-        let read = parse_points(&text).with_context(|| format!("{file}"))?;
+        let read = parse_points(&text).with_context(|| file.clone())?;
         if read.is_empty() {
             bail!("{file}: no point masses (one `m,x,y,z` a line)");
         }

@@ -53,7 +53,8 @@
 //!
 //! The main types are re-exported at the crate root; the modules hold the details:
 //! [`mesh`] (validation and the divergence-theorem integrals), [`primitives`] (closed forms),
-//! [`principal`] (eigendecomposition and realizability), [`io`] (OBJ and STL), [`shapes`] and
+//! [`principal`] (eigendecomposition and realizability), [`io`] (OBJ and STL), [`body`] (bodies
+//! assembled from meshes in a length unit, point masses and placed primitives), [`shapes`] and
 //! [`t_handle`] (generated meshes), [`euler`] (the classroom exercise), [`error`].
 //!
 //! # Example

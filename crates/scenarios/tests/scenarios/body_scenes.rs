@@ -2,7 +2,6 @@
 //! body moved in its file, the T-handle's flip period against the elliptic closed form, the
 //! disk-and-rod top against the built-in heavy top, the dumbbell of point masses, and bad bodies.
 
-use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
 
 use nalgebra::{Isometry3, Matrix3, Rotation3, Translation3, UnitQuaternion, Vector3};
@@ -276,7 +275,6 @@ fn the_disk_and_rod_top_moves_as_the_built_in_top_with_its_closed_form_moments()
         (rotation(&rows[0]) - Rotation3::from_axis_angle(&Vector3::x_axis(), 0.3).matrix()).amax()
             < 1e-15
     );
-    let _ = PI;
 }
 
 #[test]
