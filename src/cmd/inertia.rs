@@ -360,7 +360,11 @@ fn assemble(args: &Args, flags: &Ordered) -> Result<Assembled> {
 
 /// Runs the subcommand; `matches` orders the flags that follow a `--shape`.
 pub fn run(args: &Args, matches: Option<&ArgMatches>) -> Result<()> {
-    let flags = ordered(args, matches)?;
+    // Flags in the wrong place or given twice are usage errors, reported as clap reports its
+    // own (exit code 2).
+    let flags = ordered(args, matches).unwrap_or_else(|e| {
+        clap::Error::raw(clap::error::ErrorKind::ArgumentConflict, format!("{e}\n")).exit()
+    });
     let turn = flags
         .turn
         .as_deref()
