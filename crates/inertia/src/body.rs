@@ -396,7 +396,7 @@ pub fn parse_points(text: &str) -> Result<Vec<PointMass>, BodyError> {
             })?;
         }
         if !(v[0].is_finite() && v[0] > 0.0) {
-            return Err(bad(format!("mass {} must be positive and finite", f(v[0]))));
+            return Err(bad(format!("mass {} must be positive and finite", v[0])));
         }
         if !v[1..].iter().all(|x| x.is_finite()) {
             return Err(bad("the position must be finite".to_string()));
@@ -407,10 +407,6 @@ pub fn parse_points(text: &str) -> Result<Vec<PointMass>, BodyError> {
         ));
     }
     Ok(points)
-}
-
-fn f(x: f64) -> String {
-    format!("{x}")
 }
 
 #[cfg(test)]
