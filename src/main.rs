@@ -10,7 +10,7 @@ mod signals;
 
 use std::process::ExitCode;
 
-use clap::{Parser, Subcommand};
+use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
 
 /// The version and the git commit the binary was built from.
 const VERSION: &str = concat!(
@@ -34,7 +34,7 @@ enum Command {
     Animate(cmd::animate::Args),
     /// The atlas of every integrator on a battery of cases that break integrators
     HardCases(cmd::hard_cases::Args),
-    /// Mass properties of a mesh file (OBJ or STL)
+    /// Mass properties of a body: mesh files (OBJ or STL), point masses and primitives
     Inertia(cmd::inertia::Args),
     /// List every integrator: name, order, family, properties
     Integrators(cmd::integrators::Args),
@@ -52,11 +52,14 @@ enum Command {
 }
 
 fn main() -> ExitCode {
-    let cli = Cli::parse();
+    // The matches are kept for `inertia`, whose placement flags belong to the `--shape` they
+    // follow.
+    let matches = Cli::command().get_matches();
+    let cli = Cli::from_arg_matches(&matches).unwrap_or_else(|e| e.exit());
     let result = match cli.command {
         Command::Animate(args) => cmd::animate::run(&args),
         Command::HardCases(args) => cmd::hard_cases::run(&args),
-        Command::Inertia(args) => cmd::inertia::run(&args),
+        Command::Inertia(args) => cmd::inertia::run(&args, matches.subcommand_matches("inertia")),
         Command::Integrators(args) => cmd::integrators::run(&args),
         Command::Kinematics(args) => cmd::kinematics::run(&args),
         Command::Scenes(args) => cmd::scenes::run(&args),

@@ -1,48 +1,10 @@
 //! Parsing helpers shared by the subcommands' flags.
 
-use std::f64::consts::PI;
-
 use anyhow::{Context, Result, bail};
 use nalgebra::Vector3;
 
-/// Parses an angle or any number: `1.5`, `1e-3`, `pi`, `-pi/2`, `2pi/3`, `3*pi/4`.
-///
-/// The grammar is strict: a number; or an optional sign and coefficient, an optional single
-/// `*`, `pi`, and an optional `/DIVISOR` (a finite, non-zero number). An expression must give
-/// a finite value, and a number that underflows to zero (`1e-999`) is refused rather than read
-/// as 0; `2**pi`, `pi*2` and `2pi/0` are not angles.
-pub fn parse_angle(s: &str) -> Option<f64> {
-    let t = s.trim().to_ascii_lowercase().replace(' ', "");
-    let number = |text: &str| -> Option<f64> {
-        let x = text.parse::<f64>().ok()?;
-        let nonzero_digits = text
-            .split(['e', 'E'])
-            .next()
-            .is_some_and(|m| m.chars().any(|c| ('1'..='9').contains(&c)));
-        (x.is_finite() && !(x == 0.0 && nonzero_digits)).then_some(x)
-    };
-    if let Ok(x) = t.parse::<f64>() {
-        // `inf` and `nan` go on to the parameter's own check, which names the domain; an
-        // underflow to zero is refused here.
-        return if x.is_finite() { number(&t) } else { Some(x) };
-    }
-    let (num, den) = match t.split_once('/') {
-        Some((n, d)) => (n, number(d).filter(|d| *d != 0.0)?),
-        None => (t.as_str(), 1.0),
-    };
-    let coeff = num.strip_suffix("pi")?;
-    let coeff = coeff.strip_suffix('*').unwrap_or(coeff);
-    if coeff.ends_with('*') {
-        return None;
-    }
-    let c = match coeff {
-        "" | "+" => 1.0,
-        "-" => -1.0,
-        other => number(other)?,
-    };
-    let x = c * PI / den;
-    (x.is_finite()).then_some(x)
-}
+use tumble_kinematics::angle::ACCEPTED;
+pub use tumble_kinematics::angle::parse_angle;
 
 /// Parses one `--set KEY=VALUE` (the value a number or an angle expression) into the trimmed
 /// key and the value; `example` completes the message of a malformed one (`omega0=5`).
@@ -56,8 +18,7 @@ pub fn parse_set<'a>(raw: &'a str, example: &str) -> Result<(&'a str, f64)> {
     }
     let Some(x) = parse_angle(value) else {
         bail!(
-            "--set {raw}: `{}` is not a number (numbers and angle expressions such as 2.5, \
-             1e-3, pi/2, -3pi/4 are accepted)",
+            "--set {raw}: `{}` is not a number ({ACCEPTED})",
             value.trim()
         );
     };
@@ -89,6 +50,7 @@ pub fn parse_triple(flag: &str, s: &str) -> Result<Vector3<f64>> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::f64::consts::PI;
 
     #[test]
     fn angle_expressions_parse() {

@@ -114,6 +114,8 @@ struct Setup {
     origin: String,
     params: Params,
     plan: RunPlan,
+    /// The frame a `[body]` scene's rows report, in words (`None`: the scene's own body frame).
+    frame: Option<String>,
 }
 
 /// Whether SCENE names a file rather than a built-in scene.
@@ -152,14 +154,16 @@ pub(crate) struct LoadedScene {
     pub params: Params,
     /// The scene file's `[run]` options (none for a built-in scene).
     pub run: RunOptions,
+    /// The frame the rows report when the scene file has a `[body]` table.
+    pub frame: Option<String>,
 }
 
 /// The scene of `target` (built-in name or TOML file) with its `--set` overrides.
 pub(crate) fn load_scene(target: &SceneArgs) -> Result<LoadedScene> {
     let (arg, set) = (target.scene.as_str(), target.set.as_slice());
-    let (scene, origin, mut params, options) = if is_file(arg) {
+    let (scene, origin, mut params, options, frame) = if is_file(arg) {
         let file = SceneFile::load(Path::new(arg))?;
-        (file.scene, file.origin, file.params, file.run)
+        (file.scene, file.origin, file.params, file.run, file.frame)
     } else {
         let scene = scenes::find(arg).map_err(|e| match e {
             SceneError::UnknownScene { name, known } => anyhow::anyhow!(
@@ -169,7 +173,13 @@ pub(crate) fn load_scene(target: &SceneArgs) -> Result<LoadedScene> {
             other => other.into(),
         })?;
         let params = scene.info().default_params();
-        (scene, "builtin".to_string(), params, RunOptions::default())
+        (
+            scene,
+            "builtin".to_string(),
+            params,
+            RunOptions::default(),
+            None,
+        )
     };
     for raw in set {
         let (key, value) = parse_set(raw, "omega0=5")?;
@@ -182,6 +192,7 @@ pub(crate) fn load_scene(target: &SceneArgs) -> Result<LoadedScene> {
         origin,
         params,
         run: options,
+        frame,
     })
 }
 
@@ -192,6 +203,7 @@ fn setup(args: &Args) -> Result<Setup> {
         origin,
         params,
         run: mut options,
+        frame,
     } = load_scene(&args.target)?;
     if let Some(name) = &args.integrator {
         options.integrator = Some(name.clone());
@@ -237,6 +249,7 @@ fn setup(args: &Args) -> Result<Setup> {
         origin,
         params,
         plan,
+        frame,
     })
 }
 
@@ -531,6 +544,8 @@ struct SimulationRecord<'a> {
     provenance: Provenance,
     scene: &'static str,
     origin: &'a str,
+    /// The frame of the orientation and angular-velocity columns.
+    frame: String,
     parameters: std::collections::BTreeMap<&'static str, f64>,
     integrator: &'static str,
     dt: Option<f64>,
@@ -566,6 +581,9 @@ impl<'a> SimulationRecord<'a> {
             provenance: Provenance::now(1),
             scene: setup.scene.info().name,
             origin: &setup.origin,
+            frame: setup.frame.clone().unwrap_or_else(|| {
+                "the scene's body frame (docs/design.md, section 3)".to_string()
+            }),
             parameters: setup.params.iter().collect(),
             integrator: plan.integrator(),
             dt,

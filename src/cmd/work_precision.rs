@@ -70,6 +70,7 @@ pub fn run(args: &Args) -> Result<()> {
         origin,
         params,
         run: file_options,
+        ..
     } = load_scene(&args.target)?;
     // SIGINT and SIGTERM stop the run under way at a step boundary; nothing is written then.
     signals::flag();

@@ -53,7 +53,8 @@
 //!
 //! The main types are re-exported at the crate root; the modules hold the details:
 //! [`mesh`] (validation and the divergence-theorem integrals), [`primitives`] (closed forms),
-//! [`principal`] (eigendecomposition and realizability), [`io`] (OBJ and STL), [`shapes`] and
+//! [`principal`] (eigendecomposition and realizability), [`io`] (OBJ and STL), [`body`] (bodies
+//! assembled from meshes in a length unit, point masses and placed primitives), [`shapes`] and
 //! [`t_handle`] (generated meshes), [`euler`] (the classroom exercise), [`error`].
 //!
 //! # Example
@@ -84,6 +85,7 @@
 //! - H. Goldstein, C. Poole, J. Safko, *Classical Mechanics*, 3rd ed. (2002), ch. 5: the
 //!   inertia tensor, principal axes, the parallel-axis theorem.
 
+pub mod body;
 pub mod error;
 pub mod euler;
 pub mod io;
@@ -95,6 +97,7 @@ pub mod shapes;
 mod sum;
 pub mod t_handle;
 
+pub use body::{BodyError, Placement, Shape, Units, parse_points};
 pub use error::{Edge, InertiaError, LoadError, MeshError};
 pub use euler::off_diagonal_norm;
 pub use io::{MeshFormat, load_mesh, load_obj, load_stl, parse_obj, parse_stl};

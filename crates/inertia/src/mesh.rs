@@ -266,6 +266,25 @@ impl TriangleMesh {
         Self::try_new(vertices, self.faces.clone())
     }
 
+    /// The mesh with every coordinate multiplied by `factor` (a change of length unit, e.g.
+    /// `1e-3` for a file in millimetres), re-validated: volume scales by `factor³`, the
+    /// centroid by `factor`, second moments by `factor⁵`.
+    ///
+    /// # Errors
+    /// [`MeshError::InvalidShape`] for a factor that is not finite and positive; otherwise as
+    /// [`transformed`](Self::transformed).
+    pub fn scaled(&self, factor: f64) -> Result<Self, MeshError> {
+        if !(factor.is_finite() && factor > 0.0) {
+            return Err(MeshError::InvalidShape {
+                parameter: "scale factor",
+                value: factor,
+                requirement: "must be finite and positive",
+            });
+        }
+        let vertices = self.vertices.iter().map(|v| v * factor).collect();
+        Self::try_new(vertices, self.faces.clone())
+    }
+
     /// Axis-aligned bounding box of the vertices used by faces: `(min, max)`.
     #[must_use]
     pub fn bounding_box(&self) -> (Point3<f64>, Point3<f64>) {

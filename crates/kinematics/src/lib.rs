@@ -39,6 +39,7 @@
 //!   quaternions; angular velocity in the space and body frames; Euler rates from angular velocity.
 //! * [`frames`]: the transport theorem and the effective force in a rotating frame.
 
+pub mod angle;
 pub mod euler;
 pub mod frames;
 pub mod so3;

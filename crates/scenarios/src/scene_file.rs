@@ -8,8 +8,9 @@
 //! scene = "spinning-hoop"
 //!
 //! # Parameters of that scene; any omitted one keeps its default. Values are numbers
-//! # (integers are taken as exact floats); `inf` and `nan` are rejected like any value outside
-//! # the parameter's domain.
+//! # (integers are taken as exact floats) or angle expressions as strings, with the grammar
+//! # of `--set` (`"pi/2"`, `"-3pi/4"`, `"2*pi"`); `inf` and `nan` are rejected like any value
+//! # outside the parameter's domain.
 //! [parameters]
 //! M = 1.0
 //! a = 0.4
@@ -33,19 +34,16 @@
 //!
 //! # Rigid bodies: the `[body]` table
 //!
-//! The key `body` is reserved for rigid-body scenes that take their inertia from a mesh file
-//! (relative to the scene file) or a primitive of `tumble-inertia`, e.g.
-//!
-//! ```toml
-//! [body]
-//! mesh = "t-handle.obj"   # or: primitive = "box", size = [0.08, 0.02, 0.02]
-//! mass = 0.05             # or: density = 2700.0
-//! ```
-//!
-//! No built-in scene takes its body from a scene file yet (the rigid-body scenes take their
-//! moments as parameters or build their body themselves), so today a `[body]` table is an
-//! error that says so ([`SceneFileError::BodyNotApplicable`]); [`SceneFile`] will gain a
-//! `body` field when a scene does, without changing the rest of the format.
+//! The rigid-body scenes `free-body`, `dzhanibekov` and `heavy-top` take a body of the user's
+//! own from a `[body]` table: a mesh (relative to the scene file, with its units and its mass
+//! or density), point masses and placed primitives, all combined (the format is in
+//! [`body_table`](crate::body_table)); the heavy top also names its pivot. The scene then
+//! becomes its body variant ([`scenes::body`](crate::scenes::body)): the body's parameters
+//! (principal moments, principal axes, for the top its mass and centre of mass) come from the
+//! table, and the initial orientation (`phi0, theta0, psi0`) and angular velocity (`omega_x0,
+//! omega_y0, omega_z0`) are given in `[parameters]` **in the body's own frame** (the mesh file's
+//! coordinates), the frame the rows report. Other scenes refuse a `[body]` table
+//! ([`SceneFileError::BodyNotApplicable`]).
 //!
 //! # Validation
 //!
@@ -65,6 +63,7 @@ use std::path::Path;
 use serde::Deserialize;
 use toml::Spanned;
 
+use crate::body_table::{self, RawBody};
 use crate::error::SceneError;
 use crate::params::Params;
 use crate::scene::{RunOptions, Scene, StepControl};
@@ -120,10 +119,21 @@ pub enum SceneFileError {
         /// Where the second of the two is.
         at: Location,
     },
+    /// A `[body]` table that cannot be read or gives no usable body: a mesh that is not a
+    /// closed surface, a negative mass, no points, a zero principal moment.
+    #[error("{at}: `{key}`: {message}")]
+    Body {
+        /// Where the key is.
+        at: Location,
+        /// The dotted key (`body.mesh`, `body.shape[1].mass`, `body`).
+        key: String,
+        /// What is wrong.
+        message: String,
+    },
     /// A `[body]` table in a file whose scene does not take a body from a scene file.
     #[error(
         "{at}: `body`: scene `{scene}` does not take its body from a scene file; a [body] \
-         table (inertia from a mesh or a primitive) is reserved for scenes that do"
+         table is for the rigid-body scenes free-body, dzhanibekov and heavy-top"
     )]
     BodyNotApplicable {
         /// Where the table is.
@@ -143,6 +153,7 @@ impl SceneFileError {
             | SceneFileError::NotANumber { at, .. }
             | SceneFileError::InvalidEvery { at, .. }
             | SceneFileError::StepAndTolerance { at }
+            | SceneFileError::Body { at, .. }
             | SceneFileError::BodyNotApplicable { at, .. } => Some(at),
         }
     }
@@ -155,7 +166,7 @@ struct RawFile {
     scene: Option<Spanned<String>>,
     parameters: Option<BTreeMap<Spanned<String>, Spanned<toml::Value>>>,
     run: Option<Spanned<RawRun>>,
-    body: Option<Spanned<toml::Table>>,
+    body: Option<Spanned<RawBody>>,
 }
 
 #[derive(Deserialize)]
@@ -182,6 +193,9 @@ pub struct SceneFile {
     pub params: Params,
     /// Run defaults from `[run]`; `None` fields take the scene's defaults.
     pub run: RunOptions,
+    /// For a scene with a `[body]` table: the frame its rows report (the body's own frame), in
+    /// words, for the run's records; `None` for the built-in bodies.
+    pub frame: Option<String>,
 }
 
 impl fmt::Debug for SceneFile {
@@ -213,20 +227,11 @@ impl Source<'_> {
         key_span: &Range<usize>,
         value: &Spanned<toml::Value>,
     ) -> Result<f64, SceneFileError> {
-        match value.get_ref() {
-            toml::Value::Float(x) => Ok(*x),
-            toml::Value::Integer(i) if (*i as f64) as i64 == *i => Ok(*i as f64),
-            other => Err(SceneFileError::NotANumber {
-                at: self.at(key_span),
-                key: key.to_string(),
-                found: match other {
-                    toml::Value::Integer(i) => {
-                        format!("the integer {i}, which a float cannot hold exactly")
-                    }
-                    _ => describe(other),
-                },
-            }),
-        }
+        toml_file::number_or_angle(value.get_ref()).map_err(|found| SceneFileError::NotANumber {
+            at: self.at(key_span),
+            key: key.to_string(),
+            found,
+        })
     }
 }
 
@@ -260,19 +265,52 @@ impl SceneFile {
         })?;
         let info = scene.info();
 
-        if let Some(body) = &raw.body {
-            return Err(SceneFileError::BodyNotApplicable {
-                at: src.at(&body.span()),
-                scene: info.name.to_string(),
-            });
-        }
-
+        let (scene, mut params, frame) = match &raw.body {
+            None => (scene, info.default_params(), None),
+            Some(table) => {
+                let Some(body_scene) = scenes::body::for_scene(info.name) else {
+                    return Err(SceneFileError::BodyNotApplicable {
+                        at: src.at(&table.span()),
+                        scene: info.name.to_string(),
+                    });
+                };
+                let place = body_table::Place { origin, text };
+                let body = body_table::read(&place, table, body_scene.0).map_err(|e| {
+                    SceneFileError::Body {
+                        at: e.at,
+                        key: e.key,
+                        message: e.message,
+                    }
+                })?;
+                let mut params = body_scene.info().default_params();
+                body_table::set_params(&body, &mut params).map_err(|message| {
+                    SceneFileError::Body {
+                        at: src.at(&table.span()),
+                        key: "body".to_string(),
+                        message,
+                    }
+                })?;
+                let frame = format!(
+                    "the [body] table's own frame ({}): orientation qw..qz of that frame, \
+                     omega_x..omega_z components in it; the model runs in the principal frame",
+                    table_sources(table.get_ref())
+                );
+                let scene: &'static dyn Scene = body_scene;
+                (scene, params, Some(frame))
+            }
+        };
         // Parameters, in the order they appear in the file.
-        let mut params = info.default_params();
         let mut entries: Vec<_> = raw.parameters.unwrap_or_default().into_iter().collect();
         entries.sort_by_key(|(k, _)| k.span().start);
         for (name, value) in &entries {
             let key = format!("parameters.{}", name.get_ref());
+            if frame.is_some() && scenes::body::BODY_PARAMETERS.contains(&name.get_ref().as_str()) {
+                return Err(SceneFileError::Body {
+                    at: src.at(&name.span()),
+                    key,
+                    message: "is computed from the [body] table; change the body instead".into(),
+                });
+            }
             let x = src.number(&key, &name.span(), value)?;
             params
                 .set(name.get_ref(), x)
@@ -293,8 +331,14 @@ impl SceneFile {
             scene,
             params,
             run,
+            frame,
         })
     }
+}
+
+/// The sources a `[body]` table names, for the description of its frame.
+fn table_sources(body: &body_table::RawBody) -> String {
+    body.describe()
 }
 
 impl Source<'_> {
@@ -522,6 +566,31 @@ mod tests {
         }
         let e = parse("scene = \"driven-hoop\"\n[parameters]\nomega = nan\n").unwrap_err();
         assert!(e.to_string().contains("must be finite"), "{e}");
+    }
+
+    #[test]
+    fn parameters_take_angle_expressions_as_strings_like_set() {
+        let file =
+            parse("scene = \"free-hoop\"\n[parameters]\ntheta0 = \"pi/2\"\nalpha0 = \"-3pi/4\"\n")
+                .unwrap();
+        assert_eq!(
+            file.params.get("theta0").unwrap(),
+            std::f64::consts::PI / 2.0
+        );
+        assert_eq!(
+            file.params.get("alpha0").unwrap(),
+            -3.0 * std::f64::consts::PI / 4.0
+        );
+        let e = parse("scene = \"free-hoop\"\n[parameters]\n\ntheta0 = \"2**pi\"\n").unwrap_err();
+        assert!(matches!(e, SceneFileError::NotANumber { .. }), "{e}");
+        assert_eq!(line_of(&e), 4, "{e}");
+        let message = e.to_string();
+        assert!(message.contains("parameters.theta0"), "{message}");
+        assert!(message.contains("2**pi"), "{message}");
+        assert!(message.contains("angle expressions such as"), "{message}");
+        // The value still goes through the parameter's domain check.
+        let e = parse("scene = \"free-hoop\"\n[parameters]\na = \"-pi\"\n").unwrap_err();
+        assert!(e.to_string().contains("parameters.a"), "{e}");
     }
 
     #[test]

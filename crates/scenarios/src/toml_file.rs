@@ -5,6 +5,7 @@
 
 use std::fmt;
 use std::path::{Path, PathBuf};
+use tumble_kinematics::angle::{ACCEPTED, parse_angle};
 
 use serde::de::DeserializeOwned;
 
@@ -141,6 +142,24 @@ pub fn parse<T: DeserializeOwned>(text: &str, origin: &str) -> Result<T, TomlFil
             message: e.message().trim_end().to_string(),
         }
     })
+}
+
+/// A TOML value read as a number: a float, an integer a float holds exactly, or a string holding
+/// an angle expression with the grammar of `--set` ([`parse_angle`]: `"pi/2"`, `"-3pi/4"`).
+///
+/// # Errors
+/// What was found instead, described for a "must be a number, found …" message.
+pub fn number_or_angle(value: &toml::Value) -> Result<f64, String> {
+    match value {
+        toml::Value::Float(x) => Ok(*x),
+        toml::Value::Integer(i) if (*i as f64) as i64 == *i => Ok(*i as f64),
+        toml::Value::Integer(i) => Err(format!(
+            "the integer {i}, which a float cannot hold exactly"
+        )),
+        toml::Value::String(s) => parse_angle(s)
+            .ok_or_else(|| format!("{}, which is not a number ({ACCEPTED})", describe(value))),
+        other => Err(describe(other)),
+    }
 }
 
 /// Describes a TOML value for an error message.

@@ -145,8 +145,9 @@ pub const CASES: &[Case] = &[
     scene_case!(
         "body mesh missing",
         "scene = \"dzhanibekov\"\n[body]\nmesh = \"nowhere.obj\"\n",
-        "s.toml:2",
-        "body"
+        "s.toml:3",
+        "body.mesh",
+        "nowhere.obj"
     ),
     Case::new("scene file binary", SIM, 1, &["s.toml"])
         .files(&[("s.toml", Bytes(b"\x00\xff\xfe\x00garbage\x89PNG"))]),

@@ -1,6 +1,7 @@
 //! Built-in scenes: each documents its coordinates, parameters, conserved quantities and the
 //! oracle its tests use.
 
+pub mod body;
 pub mod coriolis;
 pub mod free_hoop;
 pub mod hoop;

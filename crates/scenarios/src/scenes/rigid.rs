@@ -84,16 +84,23 @@ impl<B: RigidBody> Ode<Flat> for FlatRigidBody<B> {
 
 /// Writes a row: t, quaternion, body ω, energy, (relative error slot), L, and the distance from
 /// the exact solution when one is given.
+///
+/// `frame` maps the model's body frame to the frame the rows are reported in (the columns of
+/// `frame` are the model's axes in the reported frame): the reported orientation is
+/// `R frameᵀ` and the reported angular velocity `frame ω`. The built-in scenes report their
+/// model frame (`frame` the identity, which changes no bit); scenes whose body comes from a
+/// scene file integrate in the principal frame and report the file's frame.
 fn write_row<B: RigidBody>(
     body: &B,
     exact: Option<&ExactFlow>,
+    frame: &Matrix3<f64>,
     t: f64,
     s: &RigidBodyState,
     previous: &mut Option<nalgebra::Quaternion<f64>>,
     out: &mut [f64],
 ) {
-    let q = continuous_quaternion(&s.rotation, previous);
-    let omega = body.body().omega(&s.momentum);
+    let q = continuous_quaternion(&(s.rotation * frame.transpose()), previous);
+    let omega = frame * body.body().omega(&s.momentum);
     let l = s.rotation * s.momentum;
     let head = [
         t,
@@ -124,19 +131,21 @@ const ENERGY_COLUMN: usize = 8;
 
 /// Runs a rigid body with the plan's method; `free` is the same body as a [`FreeRigidBody`]
 /// when it is torque-free (the scene then offers [`ProblemKind::FreeRigidBody`]).
-fn run_rigid<B: RigidBody + Copy>(
+/// `frame` as in [`write_row`].
+pub(crate) fn run_rigid<B: RigidBody + Copy>(
     info: &'static SceneInfo,
     body: B,
     free: Option<FreeRigidBody>,
     s0: RigidBodyState,
     exact: Option<ExactFlow>,
+    frame: Matrix3<f64>,
     plan: &RunPlan,
     recorder: &mut dyn Recorder,
 ) -> Result<RunSummary, SceneError> {
     let columns = info.columns().len();
     let mut previous = None;
     let mut row = move |t: f64, s: &RigidBodyState, out: &mut [f64]| {
-        write_row(&body, exact.as_ref(), t, s, &mut previous, out);
+        write_row(&body, exact.as_ref(), &frame, t, s, &mut previous, out);
     };
     if plan.kind == ProblemKind::Ode {
         return run_vector(
@@ -157,7 +166,7 @@ fn run_rigid<B: RigidBody + Copy>(
 }
 
 /// A torque-free body's kinds of problem, most specific first.
-const FREE_BODY_PROBLEMS: &[ProblemKind] = &[
+pub(crate) const FREE_BODY_PROBLEMS: &[ProblemKind] = &[
     ProblemKind::FreeRigidBody,
     ProblemKind::RigidBody,
     ProblemKind::LieVectorField,
@@ -165,13 +174,13 @@ const FREE_BODY_PROBLEMS: &[ProblemKind] = &[
 ];
 
 /// The heavy top's kinds of problem.
-const HEAVY_TOP_PROBLEMS: &[ProblemKind] = &[
+pub(crate) const HEAVY_TOP_PROBLEMS: &[ProblemKind] = &[
     ProblemKind::RigidBody,
     ProblemKind::LieVectorField,
     ProblemKind::Ode,
 ];
 
-const fn spec(
+pub(crate) const fn spec(
     name: &'static str,
     default: f64,
     unit: &'static str,
@@ -252,7 +261,7 @@ pub static FREE_BODY: SceneInfo = SceneInfo {
 
 /// The body with principal moments `moments`; a non-physical inertia (a moment not positive, or
 /// the triangle inequality `I1 + I2 ≥ I3` violated) is a parameter error naming I1, I2, I3.
-fn inertia_body(moments: Vector3<f64>) -> Result<FreeRigidBody, SceneError> {
+pub(crate) fn inertia_body(moments: Vector3<f64>) -> Result<FreeRigidBody, SceneError> {
     FreeRigidBody::from_principal_moments(moments).map_err(|e| match e {
         tumble_integrators::Error::InvalidParameter { value, reason, .. } => {
             SceneError::Model(crate::error::ModelError::InvalidParameter {
@@ -267,7 +276,10 @@ fn inertia_body(moments: Vector3<f64>) -> Result<FreeRigidBody, SceneError> {
 
 /// The intermediate one of principal `moments` as a column of `axes`, or an error when no
 /// moment lies strictly between the others.
-fn intermediate_of(moments: Vector3<f64>, axes: &Matrix3<f64>) -> Result<Vector3<f64>, SceneError> {
+pub(crate) fn intermediate_of(
+    moments: Vector3<f64>,
+    axes: &Matrix3<f64>,
+) -> Result<Vector3<f64>, SceneError> {
     let middle = (0..3).find(|&k| {
         let (a, b) = (moments[(k + 1) % 3], moments[(k + 2) % 3]);
         (a < moments[k] && moments[k] < b) || (b < moments[k] && moments[k] < a)
@@ -286,7 +298,7 @@ fn intermediate_of(moments: Vector3<f64>, axes: &Matrix3<f64>) -> Result<Vector3
     }
 }
 
-fn check_momentum(scene: &str, m: &Vector3<f64>) -> Result<(), SceneError> {
+pub(crate) fn check_momentum(scene: &str, m: &Vector3<f64>) -> Result<(), SceneError> {
     if m.norm() > 0.0 {
         Ok(())
     } else {
@@ -333,7 +345,16 @@ impl Scene for FreeBodyScene {
         let r0 = Rotation3::identity();
         let exact = body.flow(&r0, &m0)?;
         let s0 = RigidBodyState::new(&r0, m0);
-        run_rigid(info, body, Some(body), s0, Some(exact), plan, recorder)
+        run_rigid(
+            info,
+            body,
+            Some(body),
+            s0,
+            Some(exact),
+            Matrix3::identity(),
+            plan,
+            recorder,
+        )
     }
 
     fn intermediate_axis(&self, params: &Params) -> Option<Result<Vector3<f64>, SceneError>> {
@@ -431,7 +452,16 @@ impl Scene for DzhanibekovScene {
         let (body, s0) = Self::body_and_state(params)?;
         check_momentum(info.name, &s0.momentum)?;
         let exact = body.flow(&Rotation3::identity(), &s0.momentum)?;
-        run_rigid(info, body, Some(body), s0, Some(exact), plan, recorder)
+        run_rigid(
+            info,
+            body,
+            Some(body),
+            s0,
+            Some(exact),
+            Matrix3::identity(),
+            plan,
+            recorder,
+        )
     }
 
     fn intermediate_axis(&self, params: &Params) -> Option<Result<Vector3<f64>, SceneError>> {
@@ -541,6 +571,15 @@ impl Scene for HeavyTopScene {
     ) -> Result<RunSummary, SceneError> {
         let info = self.info();
         let (top, s0) = Self::top_and_state(params)?;
-        run_rigid(info, top, None, s0, None, plan, recorder)
+        run_rigid(
+            info,
+            top,
+            None,
+            s0,
+            None,
+            Matrix3::identity(),
+            plan,
+            recorder,
+        )
     }
 }

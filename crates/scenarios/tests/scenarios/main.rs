@@ -3,6 +3,7 @@
 
 mod support;
 
+mod body_scenes;
 mod coriolis_drop;
 mod driven_hoop;
 mod free_hoop;

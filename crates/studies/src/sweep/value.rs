@@ -2,7 +2,7 @@
 //! numbers with errors naming the key.
 
 use super::file_error::{Origin, SweepFileError};
-use tumble_scenarios::toml_file::describe;
+use tumble_scenarios::toml_file::{describe, number_or_angle};
 
 /// A value and where it came from.
 #[derive(Debug, Clone)]
@@ -25,6 +25,11 @@ impl Num {
         match value {
             toml::Value::Float(x) => Num::Float(*x),
             toml::Value::Integer(i) => Num::Int(*i),
+            // Angle expressions as strings, with the grammar and the words of `--set`.
+            toml::Value::String(_) => match number_or_angle(value) {
+                Ok(x) => Num::Float(x),
+                Err(found) => Num::Other(found),
+            },
             other => Num::Other(describe(other)),
         }
     }
@@ -78,5 +83,48 @@ impl Src<Num> {
             expected,
             found,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::f64::consts::PI;
+
+    use super::super::SweepDefinition;
+
+    const FILE: &str = r#"
+scene = "free-hoop"
+
+[parameters]
+a = 1.0
+theta0 = "pi/2"
+
+[run]
+integrator = "gauss8"
+dt = 0.01
+t_end = 0.5
+
+[[axes]]
+parameter = "alpha0"
+values = ["-3pi/4", 0.5, "2*pi/3"]
+"#;
+
+    #[test]
+    fn sweep_files_take_angle_expressions_as_strings_like_set() {
+        let def = SweepDefinition::parse(FILE, "angles.sweep.toml", &[]).unwrap();
+        assert_eq!(def.params.get("theta0").unwrap(), PI / 2.0);
+        let alphas: Vec<f64> = (0..3).map(|k| def.point(k)[0]).collect();
+        assert_eq!(alphas, vec![-3.0 * PI / 4.0, 0.5, 2.0 * PI / 3.0]);
+    }
+
+    #[test]
+    fn a_string_that_is_no_angle_expression_is_refused_with_its_key_and_line() {
+        let text = FILE.replace("\"pi/2\"", "\"pi/2x\"");
+        let e = SweepDefinition::parse(&text, "angles.sweep.toml", &[]).unwrap_err();
+        let message = e.to_string();
+        assert!(message.contains("angles.sweep.toml:6"), "{message}");
+        assert!(message.contains("theta0"), "{message}");
+        assert!(message.contains("pi/2x"), "{message}");
+        assert!(message.contains("angle expressions such as"), "{message}");
     }
 }
