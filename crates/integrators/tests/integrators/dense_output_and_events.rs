@@ -470,7 +470,7 @@ fn monomial_dense_error<const S: usize>(method: ExplicitRungeKutta<S>, q: i32, h
 /// On nonlinear problems Verner's interpolants, like the pairs, keep their principal error
 /// terms small: on the harmonic oscillator (the test above) the slopes at θ = 1/3 measured
 /// 7.45 for the 6(5) interpolant, 9.64 for 7(6) and 10.96 for 9(8) (nominal 7, 8, 10), and
-/// at θ = 1/2 on Hairer's rigid body 8.0, 9.0 and 10.8 over `h = 0.35 … 0.06`; the next
+/// at θ = 1/2 on Hairer's rigid body 8.0, 9.0 and 10.5 … 10.9 over `h = 0.35 … 0.06`; the next
 /// test observes the 7(6) interpolant's order on the rigid body where its principal term
 /// dominates.
 #[test]
