@@ -14,7 +14,8 @@
 //! wrapper), ns per step, and `overhead = step time / (evaluations × RHS time) − 1`. The times
 //! are the fastest of 21 samples of at least 5 ms each, the entries taking turns sample by
 //! sample: on a shared machine the fastest sample is the one least disturbed by other
-//! processes (a median moved by ±30 % between runs under a load of 5–7 on 2 cores).
+//! processes (medians moved by up to a factor 2 between two runs under a load of 5–8 on 2
+//! cores).
 
 use std::cell::Cell;
 use std::hint::black_box;
