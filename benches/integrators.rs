@@ -17,9 +17,17 @@
 //!   diagonal), in ns per step; before measuring, the bench prints each method's error at
 //!   t = 100 (10⁴ steps of 0.01) against the exact elliptic-function solution.
 //!
-//! Run: `cargo bench --bench integrators` (`-- rigid` for the rigid-body group only).
+//! - `step-overhead/<scene>/<method>`: per-step cost of every explicit Runge–Kutta method on
+//!   the flattened `free-hoop` and `free-body` equations against the cost of its right-hand-side
+//!   evaluations alone (module [`step_overhead`]).
+//!
+//! Run: `cargo bench --bench integrators` (`-- rigid` for the rigid-body group only,
+//! `-- step-overhead` for the per-step overhead).
 
 use std::hint::black_box;
+
+#[path = "groups/step_overhead.rs"]
+mod step_overhead;
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use nalgebra::SVector;
@@ -325,5 +333,11 @@ fn bench_rigid(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, bench_steps, bench_peers, bench_rigid);
+criterion_group!(
+    benches,
+    bench_steps,
+    bench_peers,
+    bench_rigid,
+    step_overhead::bench_step_overhead
+);
 criterion_main!(benches);

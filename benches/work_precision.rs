@@ -47,8 +47,15 @@
 //!     Criterion then measures every solver at its chosen setting. The search runs once, when
 //!     the first benchmark of the group runs, so a filter that excludes the group skips it.
 //!
+//! - `peers/<scene>`: tumble's explicit pairs against the best methods of the peer crates at
+//!   errors 1e-6 … 1e-12 on `free-hoop` and `free-body` (module [`peers`]).
+//!
 //! Run: `cargo bench --bench work_precision` (`-- free-hoop-1e-8` for the second group only,
-//! `-- scene-step` for the first; a bare `-- free-hoop` also matches `scene-step/free-hoop/…`).
+//! `-- scene-step` for the first, `-- peers` for the peer comparison; a bare `-- free-hoop`
+//! also matches `scene-step/free-hoop/…` and `peers/free-hoop`).
+
+#[path = "groups/peers.rs"]
+mod peers;
 
 use std::cell::OnceCell;
 use std::collections::BTreeMap;
@@ -697,5 +704,10 @@ fn bench_free_hoop(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, bench_scene_steps, bench_free_hoop);
+criterion_group!(
+    benches,
+    bench_scene_steps,
+    bench_free_hoop,
+    peers::bench_peers
+);
 criterion_main!(benches);

@@ -36,6 +36,10 @@
 //! difference form the rounded `a_ij` and `bᵢ` multiply only `k_j − k₁ = O(h)`, the row sums
 //! are the nodes `cᵢ` exactly, and the defect drops to the rounding of `bᵢ cᵢ` (~10⁻¹⁴).
 //!
+//! The differences `k_j − k₁` are formed once per stage (workspace `dk`), not once per term:
+//! the same roundings as forming them term by term, one subtraction per stage instead of one
+//! per nonzero coefficient.
+//!
 //! # References
 //! See [`crate::tables::explicit`] and [`crate::tables::rk_pairs`].
 
@@ -166,9 +170,11 @@ impl<const S: usize> ExplicitRungeKutta<S> {
             table: self.table,
             controller: self.controller,
             k: std::array::from_fn(|_| y0.zeros_like()),
+            dk: std::array::from_fn(|_| y0.zeros_like()),
             y0: y0.zeros_like(),
             y1: y0.zeros_like(),
             ytmp: y0.zeros_like(),
+            scratch: y0.zeros_like(),
             delta: y0.zeros_like(),
             carry: y0.zeros_like(),
             t0: 0.0,
@@ -190,9 +196,14 @@ pub struct ExplicitRkStepper<const S: usize, Y> {
     table: &'static ExplicitTableau<S>,
     controller: PiController,
     k: [Y; S],
+    /// `dk[j] = k[j] − k[0]` for `j ≥ 1`, formed once per stage (module doc: every sum of
+    /// stages is taken over these differences).
+    dk: [Y; S],
     y0: Y,
     y1: Y,
     ytmp: Y,
+    /// Second workspace of the error estimate (DOP853's third-order difference).
+    scratch: Y,
     delta: Y,
     carry: Y,
     t0: f64,
@@ -229,10 +240,24 @@ impl<const S: usize, Y: VectorState> ExplicitRkStepper<S, Y> {
         for (j, &a) in row.iter().enumerate().take(i).skip(1) {
             if a != 0.0 {
                 let ha = h * a;
-                for ((o, kj), k) in out.iter_mut().zip(self.k[j].as_slice()).zip(k0) {
-                    *o += ha * (kj - k);
+                for (o, d) in out.iter_mut().zip(self.dk[j].as_slice()) {
+                    *o += ha * d;
                 }
             }
+        }
+    }
+
+    /// `dk[i] = k[i] − k[0]`.
+    fn difference(&mut self, i: usize) {
+        let (first, rest) = self.k.split_at(1);
+        let k0 = first[0].as_slice();
+        for ((d, ki), k) in self.dk[i]
+            .as_mut_slice()
+            .iter_mut()
+            .zip(rest[i - 1].as_slice())
+            .zip(k0)
+        {
+            *d = ki - k;
         }
     }
 
@@ -262,6 +287,7 @@ impl<const S: usize, Y: VectorState> ExplicitRkStepper<S, Y> {
         for i in 1..tab.stages {
             self.stage_argument(Some(y), i, h);
             problem.rhs(t + tab.c[i] * h, &self.ytmp, &mut self.k[i]);
+            self.difference(i);
         }
         // delta = h Σ bᵢ kᵢ = h (k₁ + Σ_{i>1} bᵢ (kᵢ − k₁)) since Σ bᵢ = 1 (module doc).
         let d = self.delta.as_mut_slice();
@@ -272,46 +298,54 @@ impl<const S: usize, Y: VectorState> ExplicitRkStepper<S, Y> {
         for (j, &b) in tab.b.iter().enumerate().take(tab.stages).skip(1) {
             if b != 0.0 {
                 let hb = h * b;
-                for ((o, kj), k) in d.iter_mut().zip(self.k[j].as_slice()).zip(k0) {
-                    *o += hb * (kj - k);
+                for (o, dj) in d.iter_mut().zip(self.dk[j].as_slice()) {
+                    *o += hb * dj;
                 }
             }
         }
     }
 
-    fn error_norm(&self, y: &Y, h: f64, tol: &Tolerances) -> f64 {
+    /// The scaled error of the last attempt. The weighted stage sums are accumulated stage by
+    /// stage into the `ytmp` and `scratch` workspaces (contiguous, vectorisable loops; per
+    /// component the same sum in the same order as component by component).
+    fn error_norm(&mut self, y: &Y, h: f64, tol: &Tolerances) -> f64 {
         let n = y.dim().max(1) as f64;
         let ys = y.as_slice();
         let ds = self.delta.as_slice();
         let weight = |i: usize| tol.atol + tol.rtol * ys[i].abs().max((ys[i] + ds[i]).abs());
+        let accumulate = |out: &mut [f64], weights: &[f64; S], k: &[Y; S], skip_zeros: bool| {
+            out.fill(0.0);
+            for (w, kj) in weights.iter().zip(k) {
+                if skip_zeros && *w == 0.0 {
+                    continue;
+                }
+                for (o, x) in out.iter_mut().zip(kj.as_slice()) {
+                    *o += w * x;
+                }
+            }
+        };
         match &self.table.error {
             ErrorEstimator::None => 0.0,
             ErrorEstimator::Embedded { weights, .. } => {
+                let e = self.ytmp.as_mut_slice();
+                accumulate(e, weights, &self.k, true);
                 let mut sum = 0.0;
-                for i in 0..ys.len() {
-                    let mut e = 0.0;
-                    for (j, &w) in weights.iter().enumerate() {
-                        if w != 0.0 {
-                            e += w * self.k[j].as_slice()[i];
-                        }
-                    }
-                    let r = h * e / weight(i);
+                for (i, &ei) in e.iter().enumerate() {
+                    let r = h * ei / weight(i);
                     sum += r * r;
                 }
                 (sum / n).sqrt()
             }
             ErrorEstimator::Dop853 { e5, e3, .. } => {
+                let a5 = self.ytmp.as_mut_slice();
+                accumulate(a5, e5, &self.k, false);
+                let a3 = self.scratch.as_mut_slice();
+                accumulate(a3, e3, &self.k, false);
                 let (mut s5, mut s3) = (0.0, 0.0);
-                for i in 0..ys.len() {
-                    let (mut a5, mut a3) = (0.0, 0.0);
-                    for j in 0..S {
-                        let kj = self.k[j].as_slice()[i];
-                        a5 += e5[j] * kj;
-                        a3 += e3[j] * kj;
-                    }
+                for (i, (&x5, &x3)) in a5.iter().zip(a3.iter()).enumerate() {
                     let sk = weight(i);
-                    s5 += (a5 / sk) * (a5 / sk);
-                    s3 += (a3 / sk) * (a3 / sk);
+                    s5 += (x5 / sk) * (x5 / sk);
+                    s3 += (x3 / sk) * (x3 / sk);
                 }
                 let mut deno = s5 + 0.01 * s3;
                 if deno <= 0.0 {
@@ -342,6 +376,7 @@ impl<const S: usize, Y: VectorState> ExplicitRkStepper<S, Y> {
         self.t1 = t + h;
         if tab.fsal >= tab.stages {
             problem.rhs(t + h, y, &mut self.k[tab.fsal]);
+            self.difference(tab.fsal);
         }
         self.committed = true;
         self.dense_ready = false;
@@ -360,6 +395,7 @@ impl<const S: usize, Y: VectorState> ExplicitRkStepper<S, Y> {
             }
             self.stage_argument(None, i, h);
             problem.rhs(t0 + tab.c[i] * h, &self.ytmp, &mut self.k[i]);
+            self.difference(i);
         }
         self.dense_ready = true;
     }
@@ -489,7 +525,7 @@ impl<const S: usize, Y: VectorState, P: Ode<Y>> DenseOutput<P> for ExplicitRkSte
                     let mut w = if m == 0 { k0 } else { 0.0 };
                     for (j, &d) in row.iter().enumerate().skip(1) {
                         if d != 0.0 {
-                            w += d * (self.k[j].as_slice()[i] - k0);
+                            w += d * self.dk[j].as_slice()[i];
                         }
                     }
                     acc = theta * (h * w + acc);

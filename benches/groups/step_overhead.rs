@@ -1,0 +1,259 @@
+//! `step-overhead/<scene>/…`: the cost of one step of each explicit Runge–Kutta method against
+//! the cost of its right-hand-side evaluations alone, on the flattened equations of
+//! `free-hoop` (`ℝ¹⁴`) and `free-body` (`ℝ¹²`) at their default parameters.
+//!
+//! - `rhs`: one evaluation of the right-hand side, at each of the states a run passes through
+//!   in turn (passed through `black_box`);
+//! - `<method>`: one step of `h` = the scene's default step (0.01), 1000 steps from the initial
+//!   state through `Stepper::step` (fixed steps, the FSAL stage reused), and
+//!   `<method>-adaptive`: `attempt` + `accept`, the step of an adaptive run including its
+//!   error estimate and norm (always accepted here; the step is fixed so that both count the
+//!   same evaluations).
+//!
+//! Before criterion measures, a table is printed: evaluations per step (counted by a
+//! wrapper), ns per step, and `overhead = step time / (evaluations × RHS time) − 1`. The times
+//! are the fastest of 21 samples of at least 5 ms each, the entries taking turns sample by
+//! sample: on a shared machine the fastest sample is the one least disturbed by other
+//! processes (medians moved by up to a factor 2 between two runs under a load of 5–8 on 2
+//! cores).
+
+use std::cell::Cell;
+use std::hint::black_box;
+use std::time::{Duration, Instant};
+
+use criterion::{BenchmarkGroup, Criterion, Throughput, measurement::WallTime};
+use nalgebra::{Rotation3, SVector, Vector3};
+use tumble_integrators::rigid::{FreeRigidBody, RigidBodyState};
+use tumble_integrators::{AdaptiveStepper, ExplicitRungeKutta, Ode, Stepper, Tolerances};
+use tumble_scenarios::Scene;
+use tumble_scenarios::scenes::free_hoop::{self, FlatFreeHoop, FreeHoopScene};
+use tumble_scenarios::scenes::rigid::{self, FlatRigidBody};
+
+/// Steps per timed run.
+const STEPS: u32 = 1000;
+/// Step size (the default step of both scenes).
+const H: f64 = 0.01;
+/// Samples per entry (the fastest is reported).
+const SAMPLES: usize = 21;
+/// A sample repeats its run until it lasts this long (s).
+const MIN_SAMPLE_SECONDS: f64 = 0.005;
+
+/// The methods measured: name, and whether it has an embedded error estimate.
+pub const METHODS: [(&str, bool); 8] = [
+    ("rk4", false),
+    ("dp5", true),
+    ("dop853", true),
+    ("tsit5", true),
+    ("vern6", true),
+    ("vern7", true),
+    ("vern8", true),
+    ("vern9", true),
+];
+
+/// `problem` counting its evaluations.
+struct Counting<'a, P> {
+    inner: &'a P,
+    calls: Cell<u64>,
+}
+
+impl<const N: usize, P: Ode<SVector<f64, N>>> Ode<SVector<f64, N>> for Counting<'_, P> {
+    fn rhs(&self, t: f64, y: &SVector<f64, N>, dy: &mut SVector<f64, N>) {
+        self.calls.set(self.calls.get() + 1);
+        self.inner.rhs(t, y, dy);
+    }
+}
+
+/// `STEPS` steps of `method` from `y0`; `adaptive`: through `attempt` + `accept`.
+fn steps<const S: usize, const N: usize, P: Ode<SVector<f64, N>>>(
+    method: ExplicitRungeKutta<S>,
+    problem: &P,
+    y0: &SVector<f64, N>,
+    adaptive: bool,
+) -> SVector<f64, N> {
+    let mut y = *y0;
+    let mut st = method.stepper(&y);
+    let tol = Tolerances::new(1.0, 1.0).expect("tolerances");
+    let mut t = 0.0;
+    for k in 0..STEPS {
+        if adaptive {
+            let err = st.attempt(problem, t, &y, H, &tol).expect("attempt");
+            black_box(err);
+            st.accept(problem, t, &mut y, H);
+        } else {
+            st.step(problem, t, &mut y, H).expect("step");
+        }
+        t = f64::from(k + 1) * H;
+    }
+    y
+}
+
+/// Runs `STEPS` steps of the method called `name` (see [`METHODS`]).
+fn run_named<const N: usize, P: Ode<SVector<f64, N>>>(
+    name: &str,
+    problem: &P,
+    y0: &SVector<f64, N>,
+    adaptive: bool,
+) -> SVector<f64, N> {
+    match name {
+        "rk4" => steps(ExplicitRungeKutta::rk4(), problem, y0, false),
+        "dp5" => steps(ExplicitRungeKutta::dp5(), problem, y0, adaptive),
+        "dop853" => steps(ExplicitRungeKutta::dop853(), problem, y0, adaptive),
+        "tsit5" => steps(ExplicitRungeKutta::tsit5(), problem, y0, adaptive),
+        "vern6" => steps(ExplicitRungeKutta::vern6(), problem, y0, adaptive),
+        "vern7" => steps(ExplicitRungeKutta::vern7(), problem, y0, adaptive),
+        "vern8" => steps(ExplicitRungeKutta::vern8(), problem, y0, adaptive),
+        "vern9" => steps(ExplicitRungeKutta::vern9(), problem, y0, adaptive),
+        other => panic!("unknown method {other}"),
+    }
+}
+
+/// The `STEPS + 1` states of an RK4 run of `STEPS` steps from `y0` (the states the timed
+/// steps pass through, to a step's local error).
+fn trajectory<const N: usize, P: Ode<SVector<f64, N>>>(
+    problem: &P,
+    y0: &SVector<f64, N>,
+) -> Vec<SVector<f64, N>> {
+    let mut y = *y0;
+    let mut st = ExplicitRungeKutta::rk4().stepper(&y);
+    let mut out = vec![y];
+    for k in 0..STEPS {
+        st.step(problem, f64::from(k) * H, &mut y, H).expect("step");
+        out.push(y);
+    }
+    out
+}
+
+/// `STEPS` evaluations of the right-hand side, one at each state along the trajectory (the
+/// cost of an evaluation depends on the state: at the initial state of `free-hoop` it is
+/// about half of that along the run).
+fn rhs_only<const N: usize, P: Ode<SVector<f64, N>>>(problem: &P, states: &[SVector<f64, N>]) {
+    let mut dy = SVector::<f64, N>::zeros();
+    for (k, y) in states.iter().take(STEPS as usize).enumerate() {
+        problem.rhs(k as f64 * H, black_box(y), &mut dy);
+        black_box(&mut dy);
+    }
+}
+
+/// One timed entry: a label, evaluations per step, and the run.
+struct Entry<'a> {
+    label: String,
+    evaluations: f64,
+    run: Box<dyn Fn() + 'a>,
+}
+
+/// Fastest time of `run` per call (s), with every entry sampled in turns.
+fn time_all(entries: &[Entry<'_>]) -> Vec<f64> {
+    let reps: Vec<u32> = entries
+        .iter()
+        .map(|e| {
+            let start = Instant::now();
+            (e.run)();
+            let once = start.elapsed().as_secs_f64();
+            (MIN_SAMPLE_SECONDS / once).ceil().clamp(1.0, 100_000.0) as u32
+        })
+        .collect();
+    let mut samples = vec![Vec::with_capacity(SAMPLES); entries.len()];
+    for _ in 0..SAMPLES {
+        for (i, e) in entries.iter().enumerate() {
+            let start = Instant::now();
+            for _ in 0..reps[i] {
+                (e.run)();
+            }
+            samples[i].push(start.elapsed().as_secs_f64() / f64::from(reps[i]));
+        }
+    }
+    samples
+        .into_iter()
+        .map(|mut s| {
+            s.sort_by(f64::total_cmp);
+            s[0]
+        })
+        .collect()
+}
+
+/// The table for one scene, then the criterion entries.
+fn scene<const N: usize, P: Ode<SVector<f64, N>>>(
+    g: &mut BenchmarkGroup<'_, WallTime>,
+    scene: &str,
+    problem: &P,
+    y0: &SVector<f64, N>,
+) {
+    let states = trajectory(problem, y0);
+    let mut entries = vec![Entry {
+        label: "rhs".into(),
+        evaluations: 1.0,
+        run: Box::new(|| rhs_only(problem, &states)),
+    }];
+    for (name, embedded) in METHODS {
+        for adaptive in [false, true] {
+            if adaptive && !embedded {
+                continue;
+            }
+            let counting = Counting {
+                inner: problem,
+                calls: Cell::new(0),
+            };
+            run_named(name, &counting, y0, adaptive);
+            entries.push(Entry {
+                label: if adaptive {
+                    format!("{name}-adaptive")
+                } else {
+                    name.to_string()
+                },
+                evaluations: counting.calls.get() as f64 / f64::from(STEPS),
+                run: Box::new(move || {
+                    black_box(run_named(name, problem, y0, adaptive));
+                }),
+            });
+        }
+    }
+    let times = time_all(&entries);
+    let per = |i: usize| times[i] / f64::from(STEPS);
+    let rhs = per(0);
+    eprintln!();
+    eprintln!(
+        "step-overhead/{scene} (dimension {N}, h = {H}, {STEPS} steps a run): RHS {:.1} ns",
+        rhs * 1e9
+    );
+    eprintln!(
+        "  {:<18} {:>10} {:>11} {:>14} {:>9}",
+        "method", "RHS/step", "ns/step", "ns of RHS", "overhead"
+    );
+    for (i, e) in entries.iter().enumerate().skip(1) {
+        let rhs_part = e.evaluations * rhs;
+        eprintln!(
+            "  {:<18} {:>10.2} {:>11.1} {:>14.1} {:>8.1}%",
+            e.label,
+            e.evaluations,
+            per(i) * 1e9,
+            rhs_part * 1e9,
+            (per(i) / rhs_part - 1.0) * 100.0
+        );
+    }
+    g.throughput(Throughput::Elements(u64::from(STEPS)));
+    for e in &entries {
+        g.bench_function(format!("{scene}/{}", e.label), |b| b.iter(|| (e.run)()));
+    }
+}
+
+/// The `step-overhead` group.
+pub fn bench_step_overhead(c: &mut Criterion) {
+    let mut g = c.benchmark_group("step-overhead");
+    g.sample_size(10)
+        .measurement_time(Duration::from_secs(1))
+        .warm_up_time(Duration::from_millis(300));
+    let params = FreeHoopScene.info().default_params();
+    let (model, s0) = FreeHoopScene::model(&params).expect("free-hoop model");
+    let hoop = FlatFreeHoop::new(model).expect("flat free hoop");
+    scene(&mut g, "free-hoop", &hoop, &free_hoop::flatten(&s0));
+    let body =
+        FreeRigidBody::from_principal_moments(Vector3::new(1.0, 2.0, 3.0)).expect("free body");
+    let s0 = RigidBodyState::new(&Rotation3::identity(), Vector3::new(0.4, -0.8, 0.6));
+    scene(
+        &mut g,
+        "free-body",
+        &FlatRigidBody(body),
+        &rigid::flatten(&s0),
+    );
+    g.finish();
+}
