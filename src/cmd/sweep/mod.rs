@@ -403,7 +403,11 @@ pub fn run(args: &Args) -> Result<()> {
         resume: args.resume,
         cancel: Some(signals::flag()),
     };
-    let report = quiet_point_panics(|| sweep::run(&def, &dir, &config, &mut on_progress));
+    // A signal also stops the points under way at their next step; the engine journals none
+    // of the points it cut, so --resume computes them again.
+    let mut interruptible = def.clone();
+    interruptible.plan.cancel = Some(tumble_scenarios::scene::CancelFlag(signals::flag()));
+    let report = quiet_point_panics(|| sweep::run(&interruptible, &dir, &config, &mut on_progress));
     reporter.finish();
     let report = report?;
     if let Some(code) = signals::interrupted() {

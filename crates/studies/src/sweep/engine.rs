@@ -334,6 +334,12 @@ pub fn run(
         failed: rows.values().filter(|r| r.status != Status::Ok).count() as u64,
     };
     let mut tally = Tally::default();
+    // A point that failed while the run was being cancelled may have been cut short by the
+    // cancellation (a plan with a cancel flag stops at a step): it is not a result, so it is
+    // not journalled and a resumed run computes it again.
+    let cut = |row: &PointRow| {
+        row.status != Status::Ok && config.cancel.is_some_and(|c| c.load(Ordering::Relaxed))
+    };
     let record = |row: PointRow,
                   state: &mut Progress,
                   tally: &mut Tally,
@@ -368,6 +374,9 @@ pub fn run(
                     config.cancel,
                     &|index| run_point(def, index),
                     &mut |row| {
+                        if cut(&row) {
+                            return Ok(());
+                        }
                         let row = record(row, &mut state, &mut tally, &mut writer)?;
                         rows.insert(row.index, row);
                         progress(&state);
@@ -402,6 +411,9 @@ pub fn run(
             config.cancel,
             &|index| run_point(def, index),
             &mut |row| {
+                if cut(&row) {
+                    return Ok(());
+                }
                 fresh.push(record(row, &mut state, &mut tally, &mut writer)?);
                 progress(&state);
                 Ok(())

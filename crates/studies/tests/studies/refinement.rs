@@ -301,3 +301,56 @@ fn a_journal_row_with_a_wrong_level_is_refused() {
     let e = sweep::run(&def, &dir, &resumed, &mut |_| {}).unwrap_err();
     assert!(e.to_string().contains("the refinement gives 0"), "{e}");
 }
+
+/// A plan that carries the cancel flag stops the point under way at its next step; that cut
+/// point is not journalled as a failure, and resuming computes it to the uninterrupted result.
+#[test]
+fn a_point_cut_by_a_cancel_is_not_journalled_and_the_resumed_sweep_is_whole() {
+    use tumble_scenarios::scene::CancelFlag;
+    let text = r#"
+scene = "free-hoop"
+[run]
+integrator = "gauss8"
+dt = 1e-3
+t_end = 10.0
+[[axes]]
+parameter = "omega0"
+values = [1.0, 2.0, 3.0, 4.0]
+[metrics]
+record = ["max_tilt"]
+"#;
+    let def = SweepDefinition::parse(text, "cut.toml", &[]).unwrap();
+    let tmp = tempfile::tempdir().unwrap();
+    let reference = run_whole(&def, &tmp.path().join("whole"), &threads(1));
+    let flag: &'static AtomicBool = Box::leak(Box::new(AtomicBool::new(false)));
+    let mut cancellable = def.clone();
+    cancellable.plan.cancel = Some(CancelFlag(flag));
+    let config = RunConfig {
+        threads: 1,
+        cancel: Some(flag),
+        ..RunConfig::default()
+    };
+    let dir = tmp.path().join("cut");
+    // Cancel as soon as the first point is in: the worker is then inside the second.
+    let partial = sweep::run(&cancellable, &dir, &config, &mut |p| {
+        if p.finished >= 1 {
+            flag.store(true, Ordering::Relaxed);
+        }
+    })
+    .unwrap();
+    assert!(!partial.complete());
+    assert!(
+        partial.rows.iter().all(|r| r.status == sweep::Status::Ok),
+        "a cut point was kept: {:?}",
+        partial.rows
+    );
+    let journal = std::fs::read_to_string(dir.join(sweep::JOURNAL)).unwrap();
+    assert!(!journal.contains("failed"), "{journal}");
+    flag.store(false, Ordering::Relaxed);
+    let resumed = RunConfig {
+        resume: true,
+        ..threads(1)
+    };
+    let report = sweep::run(&def, &dir, &resumed, &mut |_| {}).unwrap();
+    assert_eq!(results_csv(&def, &report.rows).unwrap(), reference);
+}
