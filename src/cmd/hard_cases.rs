@@ -147,6 +147,9 @@ pub fn run(args: &Args) -> Result<()> {
         cases.clone_from(&built_in);
     }
     for name in &args.cases {
+        if cases.iter().any(|c| c.name == name.trim()) {
+            bail!("--cases: `{}` twice", name.trim());
+        }
         match built_in.iter().find(|c| c.name == name.trim()) {
             Some(c) => cases.push(c.clone()),
             None => bail!(
@@ -185,6 +188,11 @@ pub fn run(args: &Args) -> Result<()> {
             .map(|s| Method::parse(s).map_err(|e| anyhow::anyhow!("--integrators: {e}")))
             .collect::<Result<_>>()?
     };
+    for (k, m) in methods.iter().enumerate() {
+        if methods[..k].iter().any(|n| n.spec() == m.spec()) {
+            bail!("--integrators: `{}` twice", m.spec());
+        }
+    }
     if let Some(m) = methods.iter().find(|m| {
         !cases
             .iter()

@@ -141,6 +141,14 @@ error = 1e-5
             ],
             "exact",
         ),
+        (
+            vec!["--cases", "fast-top,sleeping-top,fast-top"],
+            "`fast-top` twice",
+        ),
+        (
+            vec!["--cases", "fast-top", "--integrators", "rk4,dop853,rk4"],
+            "`rk4` twice",
+        ),
     ] {
         let mut all = vec!["hard-cases", "-o", "bad"];
         all.extend(&args);

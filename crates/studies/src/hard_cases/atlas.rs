@@ -504,9 +504,11 @@ impl AtlasReport {
     }
 }
 
-/// The pairs of an atlas: each case with each method that runs its scene.
+/// The pairs of an atlas: each case with each method that runs its scene, each pair once (a
+/// case or method given twice is run, journalled and counted once).
 #[must_use]
 pub fn pairs<'a>(cases: &'a [Case], methods: &'a [Method]) -> Vec<(&'a Case, &'a Method)> {
+    let mut seen = std::collections::BTreeSet::new();
     cases
         .iter()
         .flat_map(|c| {
@@ -515,7 +517,24 @@ pub fn pairs<'a>(cases: &'a [Case], methods: &'a [Method]) -> Vec<(&'a Case, &'a
                 .filter(|m| c.scene.info().kind_for(m.info).is_some())
                 .map(move |m| (c, m))
         })
+        .filter(|(c, m)| seen.insert((c.name.clone(), m.spec())))
         .collect()
+}
+
+/// Cuts the last line of the journal at `path` when an interrupted write (a kill, a full disk)
+/// left it without its newline: that entry is run again, and the next one starts on a line of
+/// its own.
+fn cut_torn_line(path: &Path) -> Result<(), String> {
+    let bytes = std::fs::read(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let keep = bytes.iter().rposition(|&b| b == b'\n').map_or(0, |i| i + 1);
+    if keep < bytes.len() {
+        OpenOptions::new()
+            .write(true)
+            .open(path)
+            .and_then(|f| f.set_len(keep as u64))
+            .map_err(|e| format!("{}: cannot cut its torn last line: {e}", path.display()))?;
+    }
+    Ok(())
 }
 
 /// Runs the atlas of `cases` × `methods` (those that run each case's scene) into `dir`'s
@@ -543,6 +562,7 @@ pub fn run(
                 dir.display()
             ));
         }
+        cut_torn_line(&path)?;
         let mut reader = csv::Reader::from_path(&path).map_err(|e| e.to_string())?;
         for (k, row) in reader.deserialize::<Entry>().enumerate() {
             let entry = row.map_err(|e| format!("{}:{}: {e}", path.display(), k + 2))?;
