@@ -228,3 +228,21 @@ fn a_method_given_twice_is_run_journalled_and_counted_once() {
     let text = std::fs::read_to_string(tmp.path().join(atlas::JOURNAL)).unwrap();
     assert_eq!(text.lines().count(), 2, "{text}");
 }
+
+#[test]
+fn calibration_stops_at_a_run_that_reaches_the_time_limit_instead_of_shrinking_the_step() {
+    // A smaller step (tighter tolerance) only takes longer: the rule gives up at the first run
+    // cut by the limit, the starting setting, rather than trying ever smaller ones.
+    let case = Case::parse(QUICK, "quick.case.toml").unwrap();
+    let refs = atlas::references(&case, 60.0).unwrap();
+    let default = case.scene.info().default_step.min(case.easy_t_end / 4.0);
+    for (name, start) in [
+        ("rk4", format!("dt = {default:.3e} s")),
+        ("dop853", "tol = 1.0e-8".to_string()),
+    ] {
+        let method = Method::parse(name).unwrap();
+        let e = atlas::calibrate(&case, method.info, &refs.easy, 1e-12).unwrap_err();
+        assert!(e.contains("time limit"), "{name}: {e}");
+        assert!(e.contains(&format!("at {start})")), "{name}: {e}");
+    }
+}
