@@ -254,7 +254,9 @@ pub fn run(args: &Args) -> Result<()> {
         }
         .into());
     }
-    write_outputs(&cases, &methods, &report, args, dir)?;
+    // The workers the atlas ran on: no more than its entries.
+    let workers = threads.clamp(1, report.total.max(1));
+    write_outputs(&cases, &methods, &report, args, dir, workers)?;
     summary(&cases, &report);
     if !report.complete() {
         return Err(Unfinished {
@@ -273,6 +275,7 @@ fn write_outputs(
     report: &AtlasReport,
     args: &Args,
     dir: &std::path::Path,
+    threads: usize,
 ) -> Result<()> {
     output::write_whole(
         &dir.join("atlas.csv"),
@@ -350,7 +353,7 @@ fn write_outputs(
         run_seconds: args.run_seconds,
         wall_time_s: report.seconds,
         files: vec!["atlas.csv", "atlas.png", "atlas.svg", atlas::JOURNAL],
-        provenance: Provenance::now(args.threads.unwrap_or(0)),
+        provenance: Provenance::now(threads),
     };
     output::write_whole(
         &dir.join("manifest.json"),

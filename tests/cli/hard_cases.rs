@@ -52,6 +52,12 @@ fn an_atlas_writes_its_csv_figure_and_manifest_and_records_failures_as_results()
     assert_eq!(m["finished"], 4);
     assert!(m["rule"].as_str().unwrap().contains("easy twin"));
     assert_eq!(m["cases"][0]["name"], "sleeping-top");
+    // The threads the atlas ran on (without --threads: the cores), not 0.
+    assert!(
+        m["provenance"]["threads"].as_u64().is_some_and(|n| n >= 1),
+        "{}",
+        m["provenance"]
+    );
     // A complete atlas resumed computes nothing and writes the same CSV.
     let mut again = ARGS.to_vec();
     again.extend(["-o", "atlas", "--resume"]);
