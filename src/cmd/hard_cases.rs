@@ -147,6 +147,9 @@ pub fn run(args: &Args) -> Result<()> {
         cases.clone_from(&built_in);
     }
     for name in &args.cases {
+        if cases.iter().any(|c| c.name == name.trim()) {
+            bail!("--cases: `{}` twice", name.trim());
+        }
         match built_in.iter().find(|c| c.name == name.trim()) {
             Some(c) => cases.push(c.clone()),
             None => bail!(
@@ -185,6 +188,11 @@ pub fn run(args: &Args) -> Result<()> {
             .map(|s| Method::parse(s).map_err(|e| anyhow::anyhow!("--integrators: {e}")))
             .collect::<Result<_>>()?
     };
+    for (k, m) in methods.iter().enumerate() {
+        if methods[..k].iter().any(|n| n.spec() == m.spec()) {
+            bail!("--integrators: `{}` twice", m.spec());
+        }
+    }
     if let Some(m) = methods.iter().find(|m| {
         !cases
             .iter()
@@ -246,7 +254,9 @@ pub fn run(args: &Args) -> Result<()> {
         }
         .into());
     }
-    write_outputs(&cases, &methods, &report, args, dir)?;
+    // The workers the atlas ran on: no more than its entries.
+    let workers = threads.clamp(1, report.total.max(1));
+    write_outputs(&cases, &methods, &report, args, dir, workers)?;
     summary(&cases, &report);
     if !report.complete() {
         return Err(Unfinished {
@@ -265,6 +275,7 @@ fn write_outputs(
     report: &AtlasReport,
     args: &Args,
     dir: &std::path::Path,
+    threads: usize,
 ) -> Result<()> {
     output::write_whole(
         &dir.join("atlas.csv"),
@@ -342,7 +353,7 @@ fn write_outputs(
         run_seconds: args.run_seconds,
         wall_time_s: report.seconds,
         files: vec!["atlas.csv", "atlas.png", "atlas.svg", atlas::JOURNAL],
-        provenance: Provenance::now(args.threads.unwrap_or(0)),
+        provenance: Provenance::now(threads),
     };
     output::write_whole(
         &dir.join("manifest.json"),

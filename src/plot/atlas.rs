@@ -43,6 +43,17 @@ pub struct Atlas {
 
 /// Colour range of `log10(error)`.
 const LOG_RANGE: (f64, f64) = (-16.0, 0.0);
+/// The colour of an error: its place on the log scale, an error of 0 (the exact flow against
+/// itself) and those below the scale at its bottom; grey for none or a non-finite one.
+fn shade(error: Option<f64>) -> RGBColor {
+    error
+        .filter(|e| e.is_finite() && *e >= 0.0)
+        .map_or(GREY, |e| {
+            let log = e.max(10f64.powf(LOG_RANGE.0)).log10();
+            colour::viridis((log - LOG_RANGE.0) / (LOG_RANGE.1 - LOG_RANGE.0))
+        })
+}
+
 /// Grey of failed and timed-out cells.
 const GREY: RGBColor = RGBColor(0xb0, 0xb0, 0xb0);
 
@@ -109,17 +120,7 @@ impl Figure for Atlas {
                     Cell::NotApplicable => (WHITE, ""),
                     Cell::Missing => (WHITE, "…"),
                     Cell::Entry { status, error } => {
-                        // An error of exactly 0 (the exact flow against itself) is drawn at
-                        // the bottom of the scale.
-                        let shade =
-                            error
-                                .filter(|e| e.is_finite() && *e >= 0.0)
-                                .map_or(GREY, |e| {
-                                    colour::viridis(
-                                        (e.max(1e-300).log10() - LOG_RANGE.0)
-                                            / (LOG_RANGE.1 - LOG_RANGE.0),
-                                    )
-                                });
+                        let shade = shade(*error);
                         match status {
                             Status::Ok => (shade, ""),
                             Status::Violated => (shade, "!"),
@@ -208,6 +209,15 @@ impl Figure for Atlas {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn an_error_of_zero_is_drawn_at_the_bottom_of_the_scale_not_grey() {
+        assert_eq!(shade(Some(0.0)), colour::viridis(0.0));
+        assert_eq!(shade(Some(1e-20)), colour::viridis(0.0));
+        assert_eq!(shade(Some(1.0)), colour::viridis(1.0));
+        assert_eq!(shade(None), GREY);
+        assert_eq!(shade(Some(f64::NAN)), GREY);
+    }
 
     #[test]
     fn an_atlas_renders_every_outcome_to_png_and_svg() {

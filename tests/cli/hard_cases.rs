@@ -52,6 +52,12 @@ fn an_atlas_writes_its_csv_figure_and_manifest_and_records_failures_as_results()
     assert_eq!(m["finished"], 4);
     assert!(m["rule"].as_str().unwrap().contains("easy twin"));
     assert_eq!(m["cases"][0]["name"], "sleeping-top");
+    // The threads the atlas ran on (without --threads: the cores), not 0.
+    assert!(
+        m["provenance"]["threads"].as_u64().is_some_and(|n| n >= 1),
+        "{}",
+        m["provenance"]
+    );
     // A complete atlas resumed computes nothing and writes the same CSV.
     let mut again = ARGS.to_vec();
     again.extend(["-o", "atlas", "--resume"]);
@@ -76,7 +82,7 @@ fn a_budget_that_runs_out_exits_3_and_resume_finishes_the_same_atlas() {
     // Same outcomes and numbers but the wall times.
     let strip = |text: String| -> Vec<String> {
         text.lines()
-            .map(|l| l.rsplitn(2, ',').nth(1).unwrap_or(l).to_string())
+            .map(|l| l.rsplit_once(',').map_or(l, |(head, _)| head).to_string())
             .collect()
     };
     assert_eq!(
@@ -140,6 +146,14 @@ error = 1e-5
                 "split-exact2:dt=0.1,exact",
             ],
             "exact",
+        ),
+        (
+            vec!["--cases", "fast-top,sleeping-top,fast-top"],
+            "`fast-top` twice",
+        ),
+        (
+            vec!["--cases", "fast-top", "--integrators", "rk4,dop853,rk4"],
+            "`rk4` twice",
         ),
     ] {
         let mut all = vec!["hard-cases", "-o", "bad"];

@@ -7,8 +7,8 @@
 //! error of [`TARGET`] = 1e-6 at the horizon of the case's *easy twin*, against the twin's
 //! reference: starting from the scene's default step (tolerance 1e-8), the step is scaled by
 //! `(1e-6/e)^(1/p)` (`p` the method's order; the tolerance by `1e-6/e`), at most 16-fold at a
-//! time, for up to six runs, and the largest step (tolerance) whose error was at most 3e-6 is
-//! kept. The exact flow runs at the scene's default step. A method that cannot reach 3e-6 on
+//! time, for up to six runs (stopping at a run cut by the time limit: a smaller step would only
+//! take longer), and the largest step (tolerance) whose error was at most 3e-6 is kept. The exact flow runs at the scene's default step. A method that cannot reach 3e-6 on
 //! the easy twin is recorded as failed, with the best error it reached. So every method enters
 //! a case equally accurate on its easy twin, and the atlas shows what the case, not the
 //! method's order, does to it. A setting given with the method (`rk4:dt=0.05`) replaces the
@@ -272,7 +272,14 @@ pub fn calibrate(
                 last = format!("error {e:.1e} at {}", words(control));
                 if e.is_finite() { TARGET / e } else { 0.0 }
             }
-            Err(reason) if reason.contains("time limit") && best.is_some() => break,
+            // A smaller step (tighter tolerance) would only take longer: stop at the first run
+            // the time limit cuts, keeping the best setting if one was found.
+            Err(reason) if reason.contains("time limit") => {
+                if best.is_none() {
+                    last = format!("{reason} at {}", words(control));
+                }
+                break;
+            }
             Err(reason) => {
                 last = format!("{reason} at {}", words(control));
                 0.0
@@ -504,9 +511,11 @@ impl AtlasReport {
     }
 }
 
-/// The pairs of an atlas: each case with each method that runs its scene.
+/// The pairs of an atlas: each case with each method that runs its scene, each pair once (a
+/// case or method given twice is run, journalled and counted once).
 #[must_use]
 pub fn pairs<'a>(cases: &'a [Case], methods: &'a [Method]) -> Vec<(&'a Case, &'a Method)> {
+    let mut seen = std::collections::BTreeSet::new();
     cases
         .iter()
         .flat_map(|c| {
@@ -515,7 +524,24 @@ pub fn pairs<'a>(cases: &'a [Case], methods: &'a [Method]) -> Vec<(&'a Case, &'a
                 .filter(|m| c.scene.info().kind_for(m.info).is_some())
                 .map(move |m| (c, m))
         })
+        .filter(|(c, m)| seen.insert((c.name.clone(), m.spec())))
         .collect()
+}
+
+/// Cuts the last line of the journal at `path` when an interrupted write (a kill, a full disk)
+/// left it without its newline: that entry is run again, and the next one starts on a line of
+/// its own.
+fn cut_torn_line(path: &Path) -> Result<(), String> {
+    let bytes = std::fs::read(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let keep = bytes.iter().rposition(|&b| b == b'\n').map_or(0, |i| i + 1);
+    if keep < bytes.len() {
+        OpenOptions::new()
+            .write(true)
+            .open(path)
+            .and_then(|f| f.set_len(keep as u64))
+            .map_err(|e| format!("{}: cannot cut its torn last line: {e}", path.display()))?;
+    }
+    Ok(())
 }
 
 /// Runs the atlas of `cases` × `methods` (those that run each case's scene) into `dir`'s
@@ -543,6 +569,7 @@ pub fn run(
                 dir.display()
             ));
         }
+        cut_torn_line(&path)?;
         let mut reader = csv::Reader::from_path(&path).map_err(|e| e.to_string())?;
         for (k, row) in reader.deserialize::<Entry>().enumerate() {
             let entry = row.map_err(|e| format!("{}:{}: {e}", path.display(), k + 2))?;

@@ -153,3 +153,96 @@ fn bad_case_files_are_refused_with_the_file_and_key() {
         );
     }
 }
+
+/// A quick case of one's own: the free hoop over 0.2 s.
+const QUICK: &str = r#"
+name = "quick-hoop"
+scene = "free-hoop"
+why = "w"
+good = "g"
+
+[run]
+t_end = 0.2
+
+[property]
+energy = 1e-3
+"#;
+
+fn quick_atlas(dir: &std::path::Path, methods: &[Method], resume: bool) -> atlas::AtlasReport {
+    let cases = [Case::parse(QUICK, "quick.case.toml").unwrap()];
+    let config = atlas::AtlasConfig {
+        threads: 2,
+        run_seconds: 60.0,
+        budget: 600.0,
+        resume,
+        cancel: None,
+    };
+    atlas::run(&cases, methods, dir, &config, &|_, _| {}).unwrap()
+}
+
+#[test]
+fn an_atlas_journal_whose_last_line_was_torn_by_a_kill_resumes() {
+    let tmp = tempfile::tempdir().unwrap();
+    let methods = [
+        Method::parse("rk4:dt=0.01").unwrap(),
+        Method::parse("dop853:tol=1e-8").unwrap(),
+    ];
+    let whole = quick_atlas(tmp.path(), &methods, false);
+    assert!(whole.complete());
+    // A kill in the middle of writing the second entry: half of its line, no newline.
+    let path = tmp.path().join(atlas::JOURNAL);
+    let text = std::fs::read_to_string(&path).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(lines.len(), 3, "{text}");
+    let torn = format!(
+        "{}\n{}\n{}",
+        lines[0],
+        lines[1],
+        &lines[2][..lines[2].len() / 2]
+    );
+    std::fs::write(&path, torn).unwrap();
+    let resumed = quick_atlas(tmp.path(), &methods, true);
+    assert!(resumed.complete());
+    assert_eq!(resumed.resumed, 1);
+    // The journal holds the header and each entry once, on lines of their own.
+    let text = std::fs::read_to_string(&path).unwrap();
+    assert_eq!(text.lines().count(), 3, "{text}");
+    assert!(text.ends_with('\n'));
+    let strip = |e: &atlas::Entry| atlas::Entry {
+        seconds: None,
+        ..e.clone()
+    };
+    assert_eq!(
+        resumed.entries.iter().map(strip).collect::<Vec<_>>(),
+        whole.entries.iter().map(strip).collect::<Vec<_>>()
+    );
+}
+
+#[test]
+fn a_method_given_twice_is_run_journalled_and_counted_once() {
+    let tmp = tempfile::tempdir().unwrap();
+    let rk4 = Method::parse("rk4:dt=0.01").unwrap();
+    let report = quick_atlas(tmp.path(), &[rk4.clone(), rk4], false);
+    assert_eq!(report.total, 1);
+    assert_eq!(report.entries.len(), 1);
+    let text = std::fs::read_to_string(tmp.path().join(atlas::JOURNAL)).unwrap();
+    assert_eq!(text.lines().count(), 2, "{text}");
+}
+
+#[test]
+fn calibration_stops_at_a_run_that_reaches_the_time_limit_instead_of_shrinking_the_step() {
+    // A smaller step (tighter tolerance) only takes longer: the rule gives up at the first run
+    // cut by the limit, the starting setting, rather than trying ever smaller ones.
+    let case = Case::parse(QUICK, "quick.case.toml").unwrap();
+    let refs = atlas::references(&case, 60.0).unwrap();
+    let default = case.scene.info().default_step.min(case.easy_t_end / 4.0);
+    for (name, start) in [
+        ("rk4", format!("dt = {default:.3e} s")),
+        ("dop853", "tol = 1.0e-8".to_string()),
+    ] {
+        let method = Method::parse(name).unwrap();
+        let e = atlas::calibrate(&case, method.info, &refs.easy, 1e-12).unwrap_err();
+        assert!(e.contains("time limit"), "{name}: {e}");
+        assert!(e.contains(&format!("at {start})")), "{name}: {e}");
+    }
+}
