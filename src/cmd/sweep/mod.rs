@@ -534,7 +534,7 @@ fn finish(
     ) {
         let per_level: Vec<String> = levels.iter().map(u64::to_string).collect();
         eprintln!(
-            "refined      {} levels where {} changes by more than {}: {} points, {:.1} % of the \
+            "refined      {} levels where {} changes by more than {:?}: {} points, {:.1} % of the \
              grid (by level: {})",
             r.levels,
             r.metric,
