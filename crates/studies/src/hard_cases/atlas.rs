@@ -28,8 +28,8 @@
 use std::collections::BTreeMap;
 use std::fs::OpenOptions;
 use std::path::Path;
-use std::sync::Mutex;
 use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Mutex, OnceLock};
 use std::time::Instant;
 
 use rayon::prelude::*;
@@ -600,11 +600,14 @@ pub fn run(
                 .any(|(k, m)| k.name == c.name && !done.contains_key(&(c.name.clone(), m.spec())))
         })
         .collect();
-    let refs: BTreeMap<String, Result<References, String>> = pool.install(|| {
-        todo.par_iter()
-            .map(|c| (c.name.clone(), references(c, config.run_seconds * 4.0)))
-            .collect()
-    });
+    // Each case's references are computed by the first of its entries that starts, within
+    // the budget left then (an atlas out of budget computes none).
+    // With them, whether the budget shortened their time limit.
+    type Cell = OnceLock<(Result<References, String>, bool)>;
+    let refs: BTreeMap<String, Cell> = todo
+        .iter()
+        .map(|c| (c.name.clone(), OnceLock::new()))
+        .collect();
     let file = OpenOptions::new()
         .create(true)
         .append(true)
@@ -635,7 +638,19 @@ pub fn run(
                 return;
             }
             let seconds = config.run_seconds.min(left);
-            let entry = match refs.get(&case.name) {
+            let reference = refs.get(&case.name).map(|cell| {
+                cell.get_or_init(|| {
+                    let full = config.run_seconds * 4.0;
+                    (references(case, full.min(left)), left < full)
+                })
+            });
+            // A reference the budget cut short is no result: its entries are left to a resume.
+            if let Some((Err(reason), true)) = reference
+                && reason.contains("time limit")
+            {
+                return;
+            }
+            let entry = match reference.map(|(r, _)| r) {
                 Some(Ok(r)) => run_entry(case, r, method, seconds),
                 Some(Err(reason)) => Entry {
                     case: case.name.clone(),
@@ -696,7 +711,10 @@ pub fn run(
         resumed,
         references: refs
             .into_iter()
-            .map(|(k, r)| (k, r.map_or_else(|e| e, |r| r.method)))
+            .filter_map(|(k, cell)| {
+                cell.into_inner()
+                    .map(|(r, _)| (k, r.map_or_else(|e| e, |r| r.method)))
+            })
             .collect(),
         seconds: start.elapsed().as_secs_f64(),
     })

@@ -246,3 +246,22 @@ fn calibration_stops_at_a_run_that_reaches_the_time_limit_instead_of_shrinking_t
         assert!(e.contains(&format!("at {start})")), "{name}: {e}");
     }
 }
+
+#[test]
+fn an_atlas_out_of_budget_computes_no_reference_and_journals_nothing() {
+    let cases = vec![case("light-bead")];
+    let methods = vec![Method::parse("gauss8").unwrap()];
+    let tmp = tempfile::tempdir().unwrap();
+    let config = atlas::AtlasConfig {
+        threads: 1,
+        run_seconds: 10.0,
+        budget: 1e-9,
+        resume: false,
+        cancel: None,
+    };
+    let report = atlas::run(&cases, &methods, tmp.path(), &config, &|_, _| {}).unwrap();
+    assert_eq!((report.total, report.entries.len()), (1, 0));
+    assert!(report.references.is_empty(), "{:?}", report.references);
+    let journal = std::fs::read_to_string(tmp.path().join(atlas::JOURNAL)).unwrap_or_default();
+    assert!(journal.lines().count() <= 1, "{journal}");
+}
