@@ -7,33 +7,9 @@ use tempfile::TempDir;
 use crate::support::{stderr, succeeds, tumble_in};
 use crate::sweep::write_sweep;
 
-/// A free-hoop map over 2 s, 17 × 15 points, refined by `max_tilt`.
-const MAP: &str = r#"
-scene = "free-hoop"
-
-[run]
-integrator = "dop853"
-tol = 1e-9
-t_end = 2.0
-
-[[axes]]
-parameter = "omega0"
-range = [1.0, 6.6]
-count = 17
-
-[[axes]]
-parameter = "alpha0"
-range = [0.2, 3.0]
-count = 15
-
-[metrics]
-record = ["max_tilt", "final_tilt"]
-
-[refine]
-levels = 0
-metric = "max_tilt"
-threshold = 0.1
-"#;
+/// A free-hoop map over 2 s, 17 × 15 points, refined by `max_tilt` (2 levels; `--refine`
+/// overrides them).
+const MAP: &str = include_str!("../../crates/studies/tests/fixtures/refined-map.sweep.toml");
 
 fn read(path: &std::path::Path) -> String {
     std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
@@ -44,7 +20,10 @@ fn a_refined_map_states_its_levels_and_matches_the_uniform_grid_at_its_points() 
     let tmp = TempDir::new().unwrap();
     let file = write_sweep(tmp.path(), "map.sweep.toml", MAP);
     let file = file.to_str().unwrap();
-    succeeds(tmp.path(), &["sweep", file, "-o", "uniform"]);
+    succeeds(
+        tmp.path(),
+        &["sweep", file, "--refine", "0", "-o", "uniform"],
+    );
     let out = succeeds(
         tmp.path(),
         &["sweep", file, "--refine", "2", "-o", "refined"],

@@ -113,6 +113,15 @@ pub struct Args {
         default_value_t = 30.0
     )]
     pub progress_every: f64,
+    /// The limits every point of the sweep runs under.
+    #[command(flatten)]
+    pub limits: PointLimits,
+}
+
+/// The checks on a sweep's points that `tumble sweep` and the shards of `tumble sweep slurm`
+/// share.
+#[derive(clap::Args, Debug)]
+pub struct PointLimits {
     /// Run even when the fixed step turns the fastest initial rotation of some point by more
     /// than 0.5 rad a step (such a sweep is refused otherwise; the corners of the axes, where
     /// the rates are largest, are checked).
@@ -127,6 +136,20 @@ pub struct Args {
         allow_negative_numbers = true
     )]
     pub point_seconds: Option<f64>,
+}
+
+impl PointLimits {
+    /// Checks `def` against the limits (the step's resolution unless allowed, a valid time
+    /// limit) and returns the time limit.
+    fn check(&self, def: &SweepDefinition) -> Result<Option<f64>> {
+        if !self.allow_coarse_step {
+            check_resolution(def)?;
+        }
+        if let Some(seconds) = self.point_seconds {
+            check_point_seconds(seconds)?;
+        }
+        Ok(self.point_seconds)
+    }
 }
 
 /// The period of progress lines: `None` for 0.
@@ -366,11 +389,7 @@ pub fn run(args: &Args) -> Result<()> {
         Some(path) => SweepDefinition::load(path, &overrides)?,
         None => SweepDefinition::tilt_map(&overrides)?,
     };
-    if !args.allow_coarse_step {
-        check_resolution(&def)?;
-    }
-    if let Some(seconds) = args.point_seconds {
-        check_point_seconds(seconds)?;
+    if let Some(seconds) = args.limits.check(&def)? {
         // Every run of a point (the self-check's included) gets the limit; it is not part of
         // the definition, so a folder resumes whatever the limit.
         def.plan = def.plan.with_deadline(seconds);

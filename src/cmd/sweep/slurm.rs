@@ -52,17 +52,9 @@ pub struct SlurmArgs {
         action = clap::ArgAction::Append
     )]
     pub set: Vec<String>,
-    /// As for `tumble sweep`: the shards run even when the fixed step does not resolve the
-    /// fastest rate at a corner of the axes.
-    #[arg(long = "allow-coarse-step")]
-    pub allow_coarse_step: bool,
-    /// As for `tumble sweep`: each shard fails a point whose run takes longer than this.
-    #[arg(
-        long = "point-seconds",
-        value_name = "S",
-        allow_negative_numbers = true
-    )]
-    pub point_seconds: Option<f64>,
+    /// As for `tumble sweep`, passed on to every shard.
+    #[command(flatten)]
+    pub limits: super::PointLimits,
 }
 
 /// The job script's name in the output folder.
@@ -96,13 +88,10 @@ pub fn run(args: &SlurmArgs) -> Result<()> {
         .collect::<Result<Vec<_>>>()?;
     let def = SweepDefinition::load(&args.file, &overrides)?;
     let mut shard_flags = String::new();
-    if args.allow_coarse_step {
+    if args.limits.allow_coarse_step {
         shard_flags.push_str(" --allow-coarse-step");
-    } else {
-        super::check_resolution(&def)?;
     }
-    if let Some(seconds) = args.point_seconds {
-        super::check_point_seconds(seconds)?;
+    if let Some(seconds) = args.limits.check(&def)? {
         shard_flags.push_str(&format!(" --point-seconds {seconds}"));
     }
     let points = def.points();

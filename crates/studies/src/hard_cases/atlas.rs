@@ -164,6 +164,41 @@ pub struct Entry {
     pub seconds: Option<f64>,
 }
 
+impl Entry {
+    /// The entry of `method` on `case` before anything ran (status `failed`, no reason yet).
+    fn blank(case: &Case, method: &Method) -> Self {
+        Entry {
+            case: case.name.clone(),
+            case_key: case.key(),
+            method: method.spec(),
+            dt: None,
+            tol: None,
+            chosen_by: String::new(),
+            easy_error: None,
+            status: Status::Failed,
+            reason: String::new(),
+            error: None,
+            energy: None,
+            energy_growth: None,
+            drift: None,
+            steps: None,
+            seconds: None,
+        }
+    }
+
+    /// The entry ended by `reason`: `time-limit` when a run reached its wall-clock limit
+    /// ([`tumble_integrators::Error::TimeLimit`]), `failed` otherwise.
+    fn failing(mut self, reason: String) -> Self {
+        self.status = if reason.contains("time limit") {
+            Status::TimeLimit
+        } else {
+            Status::Failed
+        };
+        self.reason = reason;
+        self
+    }
+}
+
 /// A case's references: the final state of the case and of its easy twin.
 #[derive(Debug, Clone)]
 pub struct References {
@@ -339,24 +374,7 @@ impl Recorder for Watch {
 #[must_use]
 pub fn run_entry(case: &Case, refs: &References, method: &Method, seconds: f64) -> Entry {
     let info = case.scene.info();
-    let mut entry = Entry {
-        case: case.name.clone(),
-        case_key: case.key(),
-        method: method.spec(),
-        dt: None,
-        tol: None,
-        chosen_by: String::new(),
-        easy_error: None,
-        status: Status::Failed,
-        reason: String::new(),
-        error: None,
-        energy: None,
-        energy_growth: None,
-        drift: None,
-        steps: None,
-        seconds: None,
-    };
-    let timed_out = |reason: &str| reason.contains("time limit");
+    let mut entry = Entry::blank(case, method);
     let (control, chosen_by) = match method.setting {
         Some(c) => (c, "given"),
         None => match calibrate(case, method.info, &refs.easy, seconds) {
@@ -371,15 +389,7 @@ pub fn run_entry(case: &Case, refs: &References, method: &Method, seconds: f64) 
                     },
                 )
             }
-            Err(reason) => {
-                entry.status = if timed_out(&reason) {
-                    Status::TimeLimit
-                } else {
-                    Status::Failed
-                };
-                entry.reason = format!("calibration: {reason}");
-                return entry;
-            }
+            Err(reason) => return entry.failing(format!("calibration: {reason}")),
         },
     };
     entry.chosen_by = chosen_by.into();
@@ -418,16 +428,7 @@ pub fn run_entry(case: &Case, refs: &References, method: &Method, seconds: f64) 
     entry.seconds = Some(start.elapsed().as_secs_f64());
     let summary: RunSummary = match outcome {
         Ok(s) => s,
-        Err(e) => {
-            let reason = e.to_string();
-            entry.status = if timed_out(&reason) {
-                Status::TimeLimit
-            } else {
-                Status::Failed
-            };
-            entry.reason = reason;
-            return entry;
-        }
+        Err(e) => return entry.failing(e.to_string()),
     };
     entry.steps = Some(summary.steps);
     entry.energy = Some(summary.max_energy_rel_err);
@@ -652,27 +653,9 @@ pub fn run(
             }
             let entry = match reference.map(|(r, _)| r) {
                 Some(Ok(r)) => run_entry(case, r, method, seconds),
-                Some(Err(reason)) => Entry {
-                    case: case.name.clone(),
-                    case_key: case.key(),
-                    method: method.spec(),
-                    dt: None,
-                    tol: None,
-                    chosen_by: String::new(),
-                    easy_error: None,
-                    status: if reason.contains("time limit") {
-                        Status::TimeLimit
-                    } else {
-                        Status::Failed
-                    },
-                    reason: format!("no reference: {reason}"),
-                    error: None,
-                    energy: None,
-                    energy_growth: None,
-                    drift: None,
-                    steps: None,
-                    seconds: None,
-                },
+                Some(Err(reason)) => {
+                    Entry::blank(case, method).failing(format!("no reference: {reason}"))
+                }
                 None => return,
             };
             // An entry cut short by the end of the budget is not a result: left to a resume.

@@ -334,17 +334,19 @@ pub fn run(
         failed: rows.values().filter(|r| r.status != Status::Ok).count() as u64,
     };
     let mut tally = Tally::default();
-    // A point that failed while the run was being cancelled may have been cut short by the
-    // cancellation (a plan with a cancel flag stops at a step): it is not a result, so it is
-    // not journalled and a resumed run computes it again.
-    let cut = |row: &PointRow| {
-        row.status != Status::Ok && config.cancel.is_some_and(|c| c.load(Ordering::Relaxed))
-    };
+    // Journals a finished point and counts it. A point that failed while the run was being
+    // cancelled may have been cut short by the cancellation (a plan with a cancel flag stops
+    // at a step): it is not a result, so it is dropped (`None`) and a resumed run computes it
+    // again.
     let record = |row: PointRow,
                   state: &mut Progress,
                   tally: &mut Tally,
-                  writer: &mut journal::Writer|
-     -> Result<PointRow, SweepError> {
+                  writer: &mut journal::Writer,
+                  progress: &mut dyn FnMut(&Progress)|
+     -> Result<Option<PointRow>, SweepError> {
+        if row.status != Status::Ok && config.cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
+            return Ok(None);
+        }
         writer.push(def, &row)?;
         tally.computed += 1;
         state.finished += 1;
@@ -352,7 +354,8 @@ pub fn run(
             state.failed += 1;
             tally.failed += 1;
         }
-        Ok(row)
+        progress(state);
+        Ok(Some(row))
     };
     let (result, total) = if let Some(lattice) = Lattice::of(def) {
         // Level by level: each level's points depend on the previous levels' results.
@@ -374,12 +377,11 @@ pub fn run(
                     config.cancel,
                     &|index| run_point(def, index),
                     &mut |row| {
-                        if cut(&row) {
-                            return Ok(());
+                        if let Some(row) =
+                            record(row, &mut state, &mut tally, &mut writer, &mut *progress)?
+                        {
+                            rows.insert(row.index, row);
                         }
-                        let row = record(row, &mut state, &mut tally, &mut writer)?;
-                        rows.insert(row.index, row);
-                        progress(&state);
                         Ok(())
                     },
                 )
@@ -411,11 +413,13 @@ pub fn run(
             config.cancel,
             &|index| run_point(def, index),
             &mut |row| {
-                if cut(&row) {
-                    return Ok(());
-                }
-                fresh.push(record(row, &mut state, &mut tally, &mut writer)?);
-                progress(&state);
+                fresh.extend(record(
+                    row,
+                    &mut state,
+                    &mut tally,
+                    &mut writer,
+                    &mut *progress,
+                )?);
                 Ok(())
             },
         );

@@ -10,32 +10,7 @@ use tumble_studies::sweep::{
 
 /// A free-hoop map over 2 s: 17 spins × 15 bead angles (255 points), refined by `max_tilt`
 /// from every 4th value (2 levels).
-const REFINED: &str = r#"
-scene = "free-hoop"
-
-[run]
-integrator = "dop853"
-tol = 1e-9
-t_end = 2.0
-
-[[axes]]
-parameter = "omega0"
-range = [1.0, 6.6]
-count = 17
-
-[[axes]]
-parameter = "alpha0"
-range = [0.2, 3.0]
-count = 15
-
-[metrics]
-record = ["max_tilt", "final_tilt"]
-
-[refine]
-levels = 2
-metric = "max_tilt"
-threshold = 0.1
-"#;
+const REFINED: &str = include_str!("../fixtures/refined-map.sweep.toml");
 
 fn refined() -> SweepDefinition {
     SweepDefinition::parse(REFINED, "refined.toml", &[]).unwrap()
