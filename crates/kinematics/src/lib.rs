@@ -38,6 +38,32 @@
 //! * [`euler`]: the twelve Euler sequences, intrinsic and extrinsic, to and from rotations and
 //!   quaternions; angular velocity in the space and body frames; Euler rates from angular velocity.
 //! * [`frames`]: the transport theorem and the effective force in a rotating frame.
+//!
+//! ## Example
+//!
+//! The body-frame angular velocity from ZXZ Euler angles and rates (Goldstein's convention)
+//! agrees with the textbook components (Goldstein, *Classical Mechanics*, 3rd ed., eq. 4.87,
+//! with the rates `φ̇, θ̇, ψ̇`), and the angles come back from the rotation they build:
+//!
+//! ```
+//! use nalgebra::Vector3;
+//! use tumble_kinematics::{EulerConvention, EulerSequence, RotationKind};
+//!
+//! let zxz = EulerConvention { sequence: EulerSequence::ZXZ, kind: RotationKind::Intrinsic };
+//! let (phi, theta, psi) = (0.3_f64, 1.1_f64, -0.7_f64);
+//! let (phi_dot, theta_dot, psi_dot) = (0.5, -0.2, 4.0);
+//! let angles = Vector3::new(phi, theta, psi);
+//! let omega = zxz.omega_body(&angles, &Vector3::new(phi_dot, theta_dot, psi_dot));
+//! let goldstein = Vector3::new(
+//!     phi_dot * theta.sin() * psi.sin() + theta_dot * psi.cos(),
+//!     phi_dot * theta.sin() * psi.cos() - theta_dot * psi.sin(),
+//!     phi_dot * theta.cos() + psi_dot,
+//! );
+//! assert!((omega - goldstein).norm() < 1e-15);
+//!
+//! let back = zxz.from_rotation(&zxz.to_rotation(&angles));
+//! assert!((back.angles - angles).norm() < 1e-14 && !back.gimbal_lock);
+//! ```
 
 pub mod angle;
 pub mod euler;

@@ -23,6 +23,28 @@
 //! extension) and are removed when dropped, including on an early return with `?`; those a
 //! killed process left are found by [`is_temp_name`] and removed by
 //! [`remove_stale_temp_files`].
+//!
+//! # Example
+//!
+//! ```
+//! use std::io::Write;
+//! use tumble_output::{Destination, Mode};
+//!
+//! let dir = tempfile::tempdir()?;
+//! let path = dir.path().join("run.csv");
+//! let destination = Destination::check(&path)?; // before any work
+//! assert!(matches!(destination.mode(), Mode::Atomic { .. }));
+//! let mut out = destination.create()?;
+//! writeln!(out, "t,x")?;
+//! assert!(!path.exists()); // nothing visible until the file is complete
+//! out.finish()?;
+//! assert_eq!(std::fs::read_to_string(&path)?, "t,x\n");
+//!
+//! // A directory is refused, a character device is streamed to, never renamed over.
+//! assert!(Destination::check(dir.path()).is_err());
+//! assert!(matches!(Destination::check("/dev/null".as_ref())?.mode(), Mode::Stream));
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
 
 use std::fs::{File, OpenOptions};
 use std::io::{self, Write};

@@ -26,6 +26,43 @@
 //!   [`tumble_output::Destination`]; the journal is append-only and checked on resume.
 //! * **The library never prints**: progress is a callback, failures are typed errors
 //!   ([`sweep::SweepError`], [`tumble_scenarios::SceneError`]).
+//!
+//! ## Example
+//!
+//! A sweep defined by the same TOML as a sweep file, validated whole before anything runs;
+//! one point computed without a folder. Every point is a pure function of its index.
+//!
+//! ```
+//! use tumble_studies::sweep::{Status, SweepDefinition, run_point};
+//!
+//! let sweep = SweepDefinition::parse(
+//!     r#"
+//!     scene = "free-hoop"
+//!     [run]
+//!     t_end = 2.0
+//!     [[axes]]
+//!     parameter = "omega0"
+//!     range = [1.0, 6.0]
+//!     count = 3
+//!     [metrics]
+//!     record = ["max_tilt", "max_energy_rel_err"]
+//!     "#,
+//!     "example",
+//!     &[],
+//! )?;
+//! assert_eq!(sweep.points(), 3);
+//! let row = run_point(&sweep, 1);
+//! assert_eq!(row.status, Status::Ok);
+//! assert_eq!(row.values, vec![3.5]);
+//! let energy_error = row.metrics[1].unwrap();
+//! assert!(energy_error < 1e-9);
+//! assert_eq!(run_point(&sweep, 1), row); // deterministic to the bit
+//!
+//! // A misspelt key is refused with its line.
+//! let bad = SweepDefinition::parse("scene = \"free-hoop\"\n[run]\nt_edn = 2.0\n", "bad.toml", &[]);
+//! assert!(bad.unwrap_err().to_string().contains("t_edn"));
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
 
 pub mod hard_cases;
 pub mod sweep;
