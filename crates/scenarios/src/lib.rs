@@ -24,6 +24,7 @@
 
 pub mod body_table;
 pub mod dispatch;
+pub mod display;
 pub mod error;
 pub mod lagrangian;
 pub mod params;
