@@ -30,7 +30,7 @@ struct Cli {
 
 #[derive(Subcommand, Debug)]
 enum Command {
-    /// A scene in motion as an animated GIF: a 3D view of the body with a trail
+    /// A scene in motion as an animated GIF (or MP4 with ffmpeg): a 3D view of the body with a trail
     Animate(cmd::animate::Args),
     /// The atlas of every integrator on a battery of cases that break integrators
     HardCases(cmd::hard_cases::Args),

@@ -1,4 +1,5 @@
-//! `tumble animate`: a scene in motion as an animated GIF — the hoop as a ring with its bead,
+//! `tumble animate`: a scene in motion as an animated GIF (or an MP4, encoded by `ffmpeg` when
+//! it is installed) — the hoop as a ring with its bead,
 //! the free body as its equivalent box, the top as its axis and disk — with a trail and a
 //! readout of the time and the energy error. Frames are the scene's rows at equal times, from
 //! the integrator's dense output (`--at`), so the animation does not depend on the steps.
@@ -31,7 +32,7 @@ pub struct Args {
     /// Frame size in pixels, `WxH`.
     #[arg(long, value_name = "WxH", default_value = "640x480")]
     pub size: String,
-    /// Output file (`.gif`).
+    /// Output file: `.gif`, or `.mp4` (encoded by ffmpeg, which must be installed).
     #[arg(
         short = 'o',
         long = "output",
@@ -67,15 +68,17 @@ pub fn run(args: &Args) -> Result<()> {
         .output
         .extension()
         .map(|e| e.to_string_lossy().to_ascii_lowercase());
-    match ext.as_deref() {
-        Some("gif") => {}
-        Some("mp4") => bail!(
-            "{}: tumble writes animations as GIF; for an MP4, write a .gif and convert it, e.g. \
-             `ffmpeg -i animation.gif -pix_fmt yuv420p animation.mp4`",
+    let mp4 = match ext.as_deref() {
+        Some("gif") => false,
+        Some("mp4") => {
+            ffmpeg_present(&args.output)?;
+            true
+        }
+        _ => bail!(
+            "{}: expected a .gif file (or .mp4 with ffmpeg installed)",
             args.output.display()
         ),
-        _ => bail!("{}: expected a .gif file", args.output.display()),
-    }
+    };
     let (w, h) = parse_size(&args.size)?;
     if !(args.fps.is_finite() && args.fps > 0.0 && args.fps <= 100.0) {
         bail!(
@@ -151,7 +154,35 @@ pub fn run(args: &Args) -> Result<()> {
         radius: painter.radius,
     };
     let title = format!("{}: {}", info.name, plan.integrator());
-    write_gif(&args.output, &view, &title, &shots, args.fps)?;
+    if mp4 {
+        // The GIF's frames (a temporary file), encoded by ffmpeg (even dimensions, yuv420p:
+        // what players take) into a file beside the output, renamed over it when complete.
+        let gif = tempfile::Builder::new().suffix(".gif").tempfile()?;
+        write_gif(gif.path(), &view, &title, &shots, args.fps)?;
+        let dest = crate::output::Destination::check(&args.output)?;
+        let scratch = dest.scratch()?;
+        let status = std::process::Command::new("ffmpeg")
+            .args(["-y", "-loglevel", "error", "-i"])
+            .arg(gif.path())
+            .args([
+                "-vf",
+                "scale=trunc(iw/2)*2:trunc(ih/2)*2",
+                "-pix_fmt",
+                "yuv420p",
+                "-movflags",
+                "+faststart",
+                "-f",
+                "mp4",
+            ])
+            .arg(scratch.as_os_str())
+            .status()?;
+        if !status.success() {
+            bail!("{}: ffmpeg failed ({status})", args.output.display());
+        }
+        dest.commit_scratch(scratch)?;
+    } else {
+        write_gif(&args.output, &view, &title, &shots, args.fps)?;
+    }
     eprintln!(
         "animation    {} frames of {} over t in [0, {t_end}] s, {:.1} s at {} fps",
         shots.len(),
@@ -160,6 +191,24 @@ pub fn run(args: &Args) -> Result<()> {
         args.fps
     );
     eprintln!("output       {}", args.output.display());
+    Ok(())
+}
+
+/// Checks that `ffmpeg` runs, for writing `output` as MP4.
+fn ffmpeg_present(output: &std::path::Path) -> Result<()> {
+    let runs = std::process::Command::new("ffmpeg")
+        .arg("-version")
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .status()
+        .is_ok_and(|s| s.success());
+    if !runs {
+        bail!(
+            "{}: an MP4 is encoded by ffmpeg, which is not installed (not found on PATH); \
+             install it (Debian: apt-get install ffmpeg) or write a .gif",
+            output.display()
+        );
+    }
     Ok(())
 }
 

@@ -1,6 +1,6 @@
 //! Numbers and parameters as figures write them: symbols from
 //! [`tumble_scenarios::display::symbol`], values rounded to what a reader needs (`θ₀ = π/2`,
-//! `ω_earth = 7.29212×10⁻⁵`).
+//! `ω_earth = 7.29211×10⁻⁵`).
 
 use std::f64::consts::PI;
 
@@ -107,7 +107,8 @@ mod tests {
         // Close to, but not, a multiple of π.
         assert_eq!(value(3.1), "3.1");
         assert_eq!(value(1.5708), "1.5708");
-        assert_eq!(value(0.00007292115), "7.29212×10⁻⁵");
+        // 7.292115e-5 is 7.29211499…e-5 in binary: six digits round down.
+        assert_eq!(value(0.00007292115), "7.29211×10⁻⁵");
         assert_eq!(value(9.81), "9.81");
         assert_eq!(value(1.0), "1");
         assert_eq!(value(-0.4), "−0.4");
@@ -121,7 +122,7 @@ mod tests {
         let p = [("theta0", PI / 2.0), ("omega_earth", 7.292115e-5), ("M", 1.0)];
         assert_eq!(
             parameters(p.into_iter()),
-            "θ₀ = π/2, ω_earth = 7.29212×10⁻⁵, M = 1"
+            "θ₀ = π/2, ω_earth = 7.29211×10⁻⁵, M = 1"
         );
         assert_eq!(axis("omega0", "rad/s"), "ω₀ (rad/s)");
         assert_eq!(axis("h", ""), "h");

@@ -7,7 +7,12 @@ use plotters::coord::ranged1d::{DefaultFormatting, KeyPointHint, Ranged};
 
 /// `10^k`, exactly as the decimal literal `1ek` reads.
 fn decade(k: i32) -> f64 {
-    format!("1e{k}").parse::<f64>().unwrap_or(f64::NAN)
+    times_decade(1, k)
+}
+
+/// `m·10^k`, exactly as the decimal literal `mek` reads.
+fn times_decade(m: u32, k: i32) -> f64 {
+    format!("{m}e{k}").parse::<f64>().unwrap_or(f64::NAN)
 }
 
 /// `k` in superscript digits: `⁻¹⁵`.
@@ -118,14 +123,14 @@ impl Ranged for Log10Axis {
             // Two decades or fewer: 2 and 5 times each decade are labelled too.
             points.extend(
                 (first - 1..=last)
-                    .flat_map(|k| [2.0 * decade(k), 5.0 * decade(k)])
+                    .flat_map(|k| [times_decade(2, k), times_decade(5, k)])
                     .filter(|v| (self.lo..=self.hi).contains(v)),
             );
             points.sort_by(f64::total_cmp);
         }
         if hint.weight().allow_light_points() && stride == 1 {
             let minor: Vec<f64> = (first - 1..=last)
-                .flat_map(|k| (2..=9).map(move |m| f64::from(m) * decade(k)))
+                .flat_map(|k| (2..=9).map(move |m| times_decade(m, k)))
                 .filter(|v| (self.lo..=self.hi).contains(v))
                 .collect();
             if points.len() + minor.len() <= max {

@@ -81,6 +81,14 @@ pub trait Figure {
     /// its content (the atlas's fixed cells) keeps its own, which [`Figure::size`] reports.
     fn set_size(&mut self, size: (u32, u32));
 
+    /// Lays the figure out `width` layout pixels wide at a height of its choosing; by default
+    /// its aspect ratio is kept.
+    fn fit_width(&mut self, width: u32) {
+        let (w, h) = self.size();
+        let height = (f64::from(h) * f64::from(width) / f64::from(w.max(1))).round() as u32;
+        self.set_size((width, height.max(1)));
+    }
+
     /// Draws on `root`, which covers the whole figure at `scale` device pixels per figure
     /// pixel: every length (fonts, margins, line widths, marks) is multiplied by `scale`.
     /// [`save`] draws PNGs at scale [`SUPERSAMPLE`] and averages down, SVGs at scale 1.
@@ -194,9 +202,13 @@ pub fn save_to<F: Figure + Clone>(
 /// A drawing or conversion error.
 pub fn render<F: Figure + Clone>(figure: &F, format: Format, opts: &FigureOptions) -> Result<Vec<u8>> {
     register_fonts()?;
-    let layout = opts.layout(figure.size());
+    let layout = opts.layout();
     let mut figure = figure.clone();
-    figure.set_size(layout.layout);
+    match layout.target {
+        options::Target::Own => {}
+        options::Target::Width(w) => figure.fit_width(w),
+        options::Target::Size(w, h) => figure.set_size((w, h)),
+    }
     let size = figure.size();
     let pixels = layout.pixels(size);
     match format {
@@ -344,7 +356,7 @@ mod tests {
     fn unknown_extensions_are_refused_before_anything_is_written() {
         let dir = tempfile::tempdir().unwrap();
         let err = save(&figure(), &dir.path().join("plot.jpg")).unwrap_err();
-        assert!(err.to_string().contains(".png or .svg"), "{err}");
+        assert!(err.to_string().contains(".png, .svg or .pdf"), "{err}");
         assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
     }
 }

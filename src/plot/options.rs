@@ -7,8 +7,8 @@
 //! points fixes the scale from layout pixels to device pixels, `s = font_pt · dpi / 72 /
 //! BASE_FONT_PX`, and the figure is laid out at `size · dpi / s` layout pixels, so text keeps
 //! its requested size in points whatever the width. The presets are the usual journal column
-//! widths: `single` 3.4 in, `double` 7 in, at 300 dpi; the height keeps the figure's own
-//! aspect ratio unless given (`7x4`, `180x120mm`, `12x8cm`).
+//! widths: `single` 3.4 in, `double` 7 in, at 300 dpi; the figure chooses its height for the
+//! width unless it is given (`7x4`, `180x120mm`, `12x8cm`).
 //!
 //! Without options a figure keeps its own size in pixels (at 96 pixels per inch in SVG and
 //! PDF) and its labels are 11.25 pt.
@@ -108,12 +108,23 @@ pub struct FigureOptions {
     pub svg_text: SvgText,
 }
 
+/// The size a figure is laid out at, in layout pixels.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Target {
+    /// Its own size.
+    Own,
+    /// This width, the figure choosing its height ([`super::Figure::fit_width`]).
+    Width(u32),
+    /// This width and height.
+    Size(u32, u32),
+}
+
 /// Where a figure's layout ends up: its layout size, the device pixels per layout pixel, and
 /// the physical size.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Layout {
     /// Size to lay the figure out at (layout pixels).
-    pub layout: (u32, u32),
+    pub target: Target,
     /// Device pixels per layout pixel.
     pub scale: f64,
     /// Dots per inch.
@@ -156,8 +167,12 @@ impl FigureOptions {
             bail!("--dpi {dpi}: expected a resolution between 10 and 4800 dots per inch");
         }
         if let Some(size) = self.size {
-            let layout = self.layout((1000, 700)).layout;
-            if layout.0 < 120 || layout.1 < 80 {
+            let (w, h) = match self.layout().target {
+                Target::Own => (1000, 700),
+                Target::Width(w) => (w, 700),
+                Target::Size(w, h) => (w, h),
+            };
+            if w < 120 || h < 80 {
                 bail!(
                     "--figure-size {}x{} in with {} pt text leaves no room for a plot: use a \
                      larger size or a smaller --font-size",
@@ -170,9 +185,9 @@ impl FigureOptions {
         Ok(())
     }
 
-    /// The layout of a figure whose own size is `natural` layout pixels.
+    /// The layout these options ask for.
     #[must_use]
-    pub fn layout(&self, natural: (u32, u32)) -> Layout {
+    pub fn layout(&self) -> Layout {
         let sized = self.size.is_some();
         let dpi = self
             .dpi
@@ -183,17 +198,19 @@ impl FigureOptions {
             BASE_FONT_PX * 72.0 / CSS_DPI
         });
         let scale = font_pt * dpi / 72.0 / BASE_FONT_PX;
-        let (w, h) = (f64::from(natural.0), f64::from(natural.1));
-        let (width_in, height_in) = match self.size {
-            None => (w * scale / dpi, h * scale / dpi),
-            Some(Size { width, height }) => (width, height.unwrap_or(width * h / w.max(1.0))),
-        };
         let to_layout = |inches: f64| ((inches * dpi / scale).round() as u32).max(1);
-        Layout {
-            layout: (to_layout(width_in), to_layout(height_in)),
-            scale,
-            dpi,
-        }
+        let target = match self.size {
+            None => Target::Own,
+            Some(Size {
+                width,
+                height: None,
+            }) => Target::Width(to_layout(width)),
+            Some(Size {
+                width,
+                height: Some(height),
+            }) => Target::Size(to_layout(width), to_layout(height)),
+        };
+        Layout { target, scale, dpi }
     }
 }
 
@@ -217,8 +234,8 @@ mod tests {
 
     #[test]
     fn no_options_keep_the_figure_as_it_is() {
-        let l = FigureOptions::default().layout((1000, 720));
-        assert_eq!(l.layout, (1000, 720));
+        let l = FigureOptions::default().layout();
+        assert_eq!(l.target, Target::Own);
         assert!((l.scale - 1.0).abs() < 1e-12);
         assert_eq!(l.pixels((1000, 720)), (1000, 720));
     }
@@ -229,16 +246,29 @@ mod tests {
             size: Some(Size::parse("single").unwrap()),
             ..FigureOptions::default()
         };
-        let l = opts.layout((1000, 720));
-        // 3.4 in at 300 dpi is 1020 pixels, the height keeps the aspect ratio.
-        let px = l.pixels(l.layout);
+        let l = opts.layout();
+        // 3.4 in at 300 dpi is 1020 pixels; the figure chooses its height.
+        let Target::Width(w) = l.target else {
+            panic!("{:?}", l.target)
+        };
+        let px = l.pixels((w, 500));
         assert!((i64::from(px.0) - 1020).abs() <= 2, "{px:?}");
-        assert!((f64::from(px.1) / f64::from(px.0) - 0.72).abs() < 0.01, "{px:?}");
         // A 15-pixel label is PRESET_FONT_PT points: 15 layout px · scale / dpi · 72.
         let pt = BASE_FONT_PX * l.scale / l.dpi * 72.0;
         assert!((pt - PRESET_FONT_PT).abs() < 1e-12);
-        let (w, _) = l.inches(l.layout);
-        assert!((w - 3.4).abs() < 0.01, "{w}");
+        let (inches, _) = l.inches((w, 500));
+        assert!((inches - 3.4).abs() < 0.01, "{inches}");
+        // Both dimensions given: both kept.
+        let opts = FigureOptions {
+            size: Some(Size::parse("7x4").unwrap()),
+            ..FigureOptions::default()
+        };
+        let l = opts.layout();
+        let Target::Size(w, h) = l.target else {
+            panic!("{:?}", l.target)
+        };
+        let (a, b) = l.inches((w, h));
+        assert!((a - 7.0).abs() < 0.01 && (b - 4.0).abs() < 0.01, "{a} {b}");
     }
 
     #[test]

@@ -100,7 +100,7 @@ pub fn figure(title: String, subtitle: String, curves: &[Curve]) -> StackedFigur
         panels: vec![
             panel("wall time per run (s)", |r| r.0),
             panel(
-                "right-hand-side evaluations (steps for splitting methods)",
+                "right-hand-side evaluations (steps for a method without one)",
                 |r| r.1,
             ),
         ],

@@ -172,6 +172,9 @@ pub struct StackedFigure {
     pub panel_height: u32,
 }
 
+/// The lowest a panel is laid out when the figure chooses its height (layout pixels).
+const MIN_PANEL: u32 = 190;
+
 impl StackedFigure {
     fn band(&self) -> Band {
         Band::new(&self.title, &self.subtitle, self.width)
@@ -196,6 +199,13 @@ impl Figure for StackedFigure {
         self.panel_height = (height.saturating_sub(self.band().height()) / n).max(1);
     }
 
+    /// The width as given; each panel half as high as the figure is wide, at least
+    /// [`MIN_PANEL`] and at most as high as it was.
+    fn fit_width(&mut self, width: u32) {
+        self.width = width;
+        self.panel_height = (width / 2).clamp(MIN_PANEL, self.panel_height.max(MIN_PANEL));
+    }
+
     fn draw<DB: DrawingBackend>(
         &self,
         root: &DrawingArea<DB, Shift>,
@@ -211,10 +221,16 @@ impl Figure for StackedFigure {
         }
         let areas = body.split_evenly((self.panels.len(), 1));
         let last = self.panels.len() - 1;
+        // Panels above one with the same x axis leave its label to the bottom panel, and
+        // every panel takes the right margin the widest outside legend needs, so that the
+        // plot areas line up.
+        let shared = |k: usize| k < last && self.panels[last].x_label == self.panels[k].x_label;
+        let mut right = 0;
         for (k, (panel, area)) in self.panels.iter().zip(&areas).enumerate() {
-            // Panels above one with the same x axis leave its label to the bottom panel.
-            let shared = k < last && self.panels[last].x_label == panel.x_label;
-            draw_panel(area, panel, self.width, scale, shared)?;
+            right = right.max(draw_panel(area, panel, self.width, scale, shared(k), None)?);
+        }
+        for (k, (panel, area)) in self.panels.iter().zip(&areas).enumerate() {
+            draw_panel(area, panel, self.width, scale, shared(k), Some(right))?;
         }
         Ok(())
     }
@@ -332,7 +348,8 @@ fn draw_panel<DB: DrawingBackend>(
     width: u32,
     scale: f64,
     shared_x: bool,
-) -> DrawResult<DB> {
+    right: Option<u32>,
+) -> PanelResult<DB> {
     let x = axis_range(panel.visible().map(|p| p.0), panel.x_scale);
     let y = axis_range(panel.visible().map(|p| p.1), panel.y_scale);
     let (x, y, empty) = match (x, y) {
@@ -354,6 +371,8 @@ fn draw_panel<DB: DrawingBackend>(
         buckets: width as usize,
         scale,
         shared_x,
+        right,
+        measure: right.is_none(),
     };
     // A log axis range from `axis_range` is always positive; the fallback never runs.
     let log = |r: Range<f64>| Log10Axis::new(r).unwrap_or_else(Log10Axis::fallback);
@@ -383,6 +402,10 @@ struct Look<'a> {
     scale: f64,
     /// The x axis's label is the bottom panel's: tick labels only.
     shared_x: bool,
+    /// The right margin (device pixels), the same for every panel of a figure.
+    right: Option<u32>,
+    /// Only find the right margin the panel needs; draw nothing.
+    measure: bool,
 }
 
 /// Draws one panel on coordinates `x`, `y` (linear ranges or their `log_scale()`).
@@ -394,7 +417,7 @@ fn chart<DB, X, Y>(
     x_format: &dyn Fn(&f64) -> String,
     y_format: &dyn Fn(&f64) -> String,
     look: &Look<'_>,
-) -> DrawResult<DB>
+) -> PanelResult<DB>
 where
     DB: DrawingBackend,
     X: AsRangedCoord<Value = f64> + Clone,
@@ -415,7 +438,9 @@ where
             .y_label_area_size(px(84))
             .build_cartesian_2d(x.clone(), y.clone())
     };
-    let mut chart = build(px(24))?;
+    let base_right = px(24);
+    let mut right = look.right.unwrap_or(base_right).max(base_right);
+    let mut chart = build(right)?;
     let prepared: Vec<Prepared> = panel
         .series
         .iter()
@@ -456,9 +481,14 @@ where
     let mut placement = legend::Placement::Outside;
     if !panel.series.is_empty() && look.note.is_none() {
         placement = legend::place(&plot_rect(&chart), legend_size, 6.0 * s, &drawn);
-        if placement == legend::Placement::Outside {
-            chart = build(px(24) + legend_size.0.round() as u32 + px(8))?;
+        let need = base_right + legend_size.0.round() as u32 + px(8);
+        if placement == legend::Placement::Outside && right < need {
+            right = need;
+            chart = build(right)?;
         }
+    }
+    if look.measure {
+        return Ok(right);
     }
     {
         let mut mesh = chart.configure_mesh();
@@ -494,7 +524,7 @@ where
                 ),
             ),
         ))?;
-        return Ok(());
+        return Ok(right);
     }
     for p in &prepared {
         let colour = p.sample.colour;
@@ -530,7 +560,7 @@ where
         };
     }
     if panel.series.is_empty() {
-        return Ok(());
+        return Ok(right);
     }
     let rect = plot_rect(&chart);
     let corner = match placement {
@@ -552,8 +582,14 @@ where
         ),
         &entries,
         s,
-    )
+    )?;
+    Ok(right)
 }
+
+/// What drawing a panel returns: the right margin it took (device pixels), wider than the
+/// usual when its legend went outside.
+type PanelResult<DB> =
+    Result<u32, DrawingAreaErrorKind<<DB as DrawingBackend>::ErrorType>>;
 
 /// A series ready to draw: its (thinned) polyline, its marks and its legend sample.
 struct Prepared {
