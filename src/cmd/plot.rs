@@ -34,7 +34,11 @@ pub struct Args {
     #[arg(value_name = "FILE.csv|DIR")]
     pub input: PathBuf,
     /// The figure to write: PNG, SVG or PDF by the extension.
-    #[arg(short = 'o', long = "output", value_name = "FILE.png|FILE.svg|FILE.pdf")]
+    #[arg(
+        short = 'o',
+        long = "output",
+        value_name = "FILE.png|FILE.svg|FILE.pdf"
+    )]
     pub output: PathBuf,
     /// A simulate CSV: the columns to draw (default: every coordinate, rate and diagnostic the
     /// command draws).
@@ -71,6 +75,9 @@ pub fn run(args: &Args) -> Result<()> {
     let input = &args.input;
     if args.slices == 0 {
         bail!("--slices 0: draw at least one slice");
+    }
+    if !input.exists() {
+        bail!("{}: no such file or folder", input.display());
     }
     if input.is_dir() {
         if input.join(sweep::DEFINITION).is_file() {
@@ -147,7 +154,10 @@ fn field<'a>(json: &'a serde_json::Value, key: &str, path: &Path) -> Result<&'a 
 fn scene_and_parameters(
     json: &serde_json::Value,
     path: &Path,
-) -> Result<(&'static tumble_scenarios::SceneInfo, Vec<(&'static str, f64)>)> {
+) -> Result<(
+    &'static tumble_scenarios::SceneInfo,
+    Vec<(&'static str, f64)>,
+)> {
     let name = field(json, "scene", path)?;
     let scene = scenes::find(name).with_context(|| format!("{}: scene", path.display()))?;
     let info = scene.info();
@@ -214,7 +224,10 @@ fn simulation_figure(csv_path: &Path, args: &Args) -> Result<plot::xy::StackedFi
             });
         }
         if values.first().is_none_or(Vec::is_empty) {
-            bail!("--t-range {range}: no row of {} lies in it", csv_path.display());
+            bail!(
+                "--t-range {range}: no row of {} lies in it",
+                csv_path.display()
+            );
         }
     }
     Ok(plot::trajectory::simulation(
@@ -297,12 +310,13 @@ fn work_precision_figure(dir: &Path) -> Result<plot::xy::StackedFigure> {
     let mut curves: Vec<Curve> = Vec::new();
     for (i, row) in reader.deserialize::<RungRow>().enumerate() {
         let row = row.with_context(|| format!("{}: row {}", csv_path.display(), i + 2))?;
-        let order = match row.order.as_str() {
-            "exact" => None,
-            p => Some(p.parse().with_context(|| {
-                format!("{}: row {}: order `{p}`", csv_path.display(), i + 2)
-            })?),
-        };
+        let order =
+            match row.order.as_str() {
+                "exact" => None,
+                p => Some(p.parse().with_context(|| {
+                    format!("{}: row {}: order `{p}`", csv_path.display(), i + 2)
+                })?),
+            };
         let label = plot::work_precision::curve_label(&row.integrator, order);
         let rung = (row.wall_time_s, row.evaluations, row.error);
         match curves.last_mut() {

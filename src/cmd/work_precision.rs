@@ -276,7 +276,6 @@ fn seconds(s: f64) -> String {
     }
 }
 
-
 /// The CSV: one row per rung.
 fn csv_text(ladders: &[Ladder]) -> Result<String> {
     let mut w = csv::Writer::from_writer(Vec::new());

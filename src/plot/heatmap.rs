@@ -136,7 +136,10 @@ impl Heatmap {
     }
 
     fn has_missing(&self) -> bool {
-        self.values.iter().flatten().any(|v| self.tone(*v).is_none())
+        self.values
+            .iter()
+            .flatten()
+            .any(|v| self.tone(*v).is_none())
     }
 }
 
@@ -162,7 +165,16 @@ fn halo_text<DB: DrawingBackend>(
     let r = (1.5 * scale).round().max(1.0) as i32;
     let style = font(15.0 * scale).pos(pos);
     let dark = RGBColor(20, 20, 20).mix(0.85);
-    for (dx, dy) in [(-r, 0), (r, 0), (0, -r), (0, r), (-r, -r), (r, r), (-r, r), (r, -r)] {
+    for (dx, dy) in [
+        (-r, 0),
+        (r, 0),
+        (0, -r),
+        (0, r),
+        (-r, -r),
+        (r, r),
+        (-r, r),
+        (r, -r),
+    ] {
         root.draw(&Text::new(
             text.to_string(),
             (at.0 + dx, at.1 + dy),
@@ -323,7 +335,13 @@ impl Figure for Heatmap {
             chart.draw_series(dashes)?;
             if let Some(end) = inside.last() {
                 let at = chart.backend_coord(end);
-                halo_text(root, &curve.label, at, Pos::new(HPos::Right, VPos::Bottom), s)?;
+                halo_text(
+                    root,
+                    &curve.label,
+                    at,
+                    Pos::new(HPos::Right, VPos::Bottom),
+                    s,
+                )?;
             }
         }
         // Draw the frame again over the cells.

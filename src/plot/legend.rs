@@ -261,7 +261,10 @@ fn draw_sample<DB: DrawingBackend>(
         let fill = sample.colour.filled();
         match sample.marker {
             0 => area.draw(&Circle::new(c, r, fill))?,
-            1 => area.draw(&Rectangle::new([(c.0 - r, c.1 - r), (c.0 + r, c.1 + r)], fill))?,
+            1 => area.draw(&Rectangle::new(
+                [(c.0 - r, c.1 - r), (c.0 + r, c.1 + r)],
+                fill,
+            ))?,
             _ => area.draw(&TriangleMarker::new(c, r + d(1.0), fill))?,
         }
     }
@@ -285,7 +288,10 @@ mod tests {
         assert!(!r.meets_segment((-5.0, -1.0), (15.0, -1.0)), "above");
         // A diagonal passing the corner outside it.
         assert!(!r.meets_segment((11.0, 0.0), (20.0, 9.0)));
-        assert!(r.meets_segment((5.0, -5.0), (5.0, 0.0)), "touching the edge");
+        assert!(
+            r.meets_segment((5.0, -5.0), (5.0, 0.0)),
+            "touching the edge"
+        );
     }
 
     #[test]

@@ -145,7 +145,6 @@ impl Ranged for Log10Axis {
     }
 }
 
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -185,5 +184,4 @@ mod tests {
             [1e-15, 2e-15, 5e-15, 1e-14]
         );
     }
-
 }

@@ -189,7 +189,8 @@ pub fn save_to<F: Figure + Clone>(
 ) -> Result<()> {
     let path = dest.path();
     let format = Format::from_path(path)?;
-    let bytes = render(figure, format, opts).with_context(|| format!("cannot draw {}", path.display()))?;
+    let bytes =
+        render(figure, format, opts).with_context(|| format!("cannot draw {}", path.display()))?;
     let temp = dest.scratch()?;
     std::fs::write(&temp, bytes).with_context(|| format!("cannot write {}", temp.display()))?;
     dest.commit_scratch(temp)?;
@@ -200,7 +201,11 @@ pub fn save_to<F: Figure + Clone>(
 ///
 /// # Errors
 /// A drawing or conversion error.
-pub fn render<F: Figure + Clone>(figure: &F, format: Format, opts: &FigureOptions) -> Result<Vec<u8>> {
+pub fn render<F: Figure + Clone>(
+    figure: &F,
+    format: Format,
+    opts: &FigureOptions,
+) -> Result<Vec<u8>> {
     register_fonts()?;
     let layout = opts.layout();
     let mut figure = figure.clone();

@@ -189,9 +189,7 @@ impl FigureOptions {
     #[must_use]
     pub fn layout(&self) -> Layout {
         let sized = self.size.is_some();
-        let dpi = self
-            .dpi
-            .unwrap_or(if sized { PRESET_DPI } else { CSS_DPI });
+        let dpi = self.dpi.unwrap_or(if sized { PRESET_DPI } else { CSS_DPI });
         let font_pt = self.font_pt.unwrap_or(if sized {
             PRESET_FONT_PT
         } else {

@@ -106,7 +106,11 @@ pub(crate) fn draw_plots(
 
 /// The figures of metric `choice.metric` of a sweep over a grid of one or two axes; `None`
 /// for random sampling, more than two axes or a metric the sweep does not have.
-pub(crate) fn figures(def: &SweepDefinition, rows: &[PointRow], choice: &Choice) -> Option<Figures> {
+pub(crate) fn figures(
+    def: &SweepDefinition,
+    rows: &[PointRow],
+    choice: &Choice,
+) -> Option<Figures> {
     let k = choice.metric;
     let metric = def.metrics.get(k)?;
     if def.sampling != Sampling::Grid || def.axes.len() > 2 {

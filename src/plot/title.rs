@@ -131,7 +131,10 @@ mod tests {
                     (cross-check dop853: 3.1e-13)";
         let lines = wrap(text, SUBTITLE_PX, 300.0);
         assert!(lines.len() >= 2, "{lines:?}");
-        assert!(lines.iter().all(|l| width(l, SUBTITLE_PX) <= 300.0), "{lines:?}");
+        assert!(
+            lines.iter().all(|l| width(l, SUBTITLE_PX) <= 300.0),
+            "{lines:?}"
+        );
         assert_eq!(lines.join(" "), text);
         // Width is additive over a space-free split, and grows with the size.
         assert!(width("ab", 15.0) > width("a", 15.0));

@@ -50,12 +50,10 @@ pub fn document(svg: &str, device: (u32, u32), extent: &Extent) -> Result<String
     if !svg.contains(&old) {
         return Err(anyhow!("unexpected SVG root element from the plot backend"));
     }
-    Ok(svg
-        .replacen(&old, &new, 1)
-        .replace(
-            &format!(r#"font-family="{FONT}""#),
-            &format!(r#"font-family="{FAMILY}""#),
-        ))
+    Ok(svg.replacen(&old, &new, 1).replace(
+        &format!(r#"font-family="{FONT}""#),
+        &format!(r#"font-family="{FAMILY}""#),
+    ))
 }
 
 /// The finished SVG file for `doc` (from [`document`]) with text written as `text` says.
@@ -87,7 +85,10 @@ fn with_embedded_font(doc: &str) -> String {
             base64::engine::general_purpose::STANDARD.encode(DEJAVU_SANS)
         )
     });
-    match doc.find("<svg").and_then(|i| doc[i..].find('>').map(|j| i + j + 1)) {
+    match doc
+        .find("<svg")
+        .and_then(|i| doc[i..].find('>').map(|j| i + j + 1))
+    {
         Some(end) => {
             let mut out = String::with_capacity(doc.len() + face.len() + 1);
             out.push_str(&doc[..end]);

@@ -173,7 +173,7 @@ pub struct StackedFigure {
 }
 
 /// The lowest a panel is laid out when the figure chooses its height (layout pixels).
-const MIN_PANEL: u32 = 190;
+const MIN_PANEL: u32 = 150;
 
 impl StackedFigure {
     fn band(&self) -> Band {
@@ -199,11 +199,11 @@ impl Figure for StackedFigure {
         self.panel_height = (height.saturating_sub(self.band().height()) / n).max(1);
     }
 
-    /// The width as given; each panel half as high as the figure is wide, at least
+    /// The width as given; each panel 0.4 times as high as the figure is wide, at least
     /// [`MIN_PANEL`] and at most as high as it was.
     fn fit_width(&mut self, width: u32) {
         self.width = width;
-        self.panel_height = (width / 2).clamp(MIN_PANEL, self.panel_height.max(MIN_PANEL));
+        self.panel_height = (width * 2 / 5).clamp(MIN_PANEL, self.panel_height.max(MIN_PANEL));
     }
 
     fn draw<DB: DrawingBackend>(
@@ -497,17 +497,17 @@ where
         } else {
             panel.x_label.as_str()
         })
-            .y_desc(panel.y_label.as_str())
-            .axis_desc_style(font(17.0 * s))
-            .label_style(font(14.0 * s))
-            .set_all_tick_mark_size(px(5))
-            .axis_style(BLACK.stroke_width(line_width))
-            .light_line_style(RGBColor(238, 238, 238).stroke_width(line_width))
-            .bold_line_style(RGBColor(212, 212, 212).stroke_width(line_width))
-            .x_labels(X_LABELS)
-            .y_labels(Y_LABELS)
-            .x_label_formatter(x_format)
-            .y_label_formatter(y_format);
+        .y_desc(panel.y_label.as_str())
+        .axis_desc_style(font(17.0 * s))
+        .label_style(font(14.0 * s))
+        .set_all_tick_mark_size(px(5))
+        .axis_style(BLACK.stroke_width(line_width))
+        .light_line_style(RGBColor(238, 238, 238).stroke_width(line_width))
+        .bold_line_style(RGBColor(212, 212, 212).stroke_width(line_width))
+        .x_labels(X_LABELS)
+        .y_labels(Y_LABELS)
+        .x_label_formatter(x_format)
+        .y_label_formatter(y_format);
         mesh.draw()?;
     }
     if let Some(note) = look.note {
@@ -588,8 +588,7 @@ where
 
 /// What drawing a panel returns: the right margin it took (device pixels), wider than the
 /// usual when its legend went outside.
-type PanelResult<DB> =
-    Result<u32, DrawingAreaErrorKind<<DB as DrawingBackend>::ErrorType>>;
+type PanelResult<DB> = Result<u32, DrawingAreaErrorKind<<DB as DrawingBackend>::ErrorType>>;
 
 /// A series ready to draw: its (thinned) polyline, its marks and its legend sample.
 struct Prepared {

@@ -20,7 +20,14 @@ fn plot_redraws_a_simulation_csv_as_simulate_drew_it() {
     succeeds(
         dir,
         &[
-            "simulate", "free-hoop", "--t-end", "1", "-o", "run.csv", "--plot", "cmd.svg",
+            "simulate",
+            "free-hoop",
+            "--t-end",
+            "1",
+            "-o",
+            "run.csv",
+            "--plot",
+            "cmd.svg",
         ],
     );
     succeeds(dir, &["plot", "run.csv", "-o", "again.svg"]);
@@ -52,7 +59,10 @@ fn plot_redraws_a_sweep_folder_as_the_sweep_drew_it() {
     succeeds(tmp.path(), &["sweep", file.to_str().unwrap(), "-o", "s"]);
     let dir = tmp.path().join("s");
     succeeds(tmp.path(), &["plot", "s", "-o", "map.svg"]);
-    assert_eq!(read(&dir.join("tilt-map.svg")), read(&tmp.path().join("map.svg")));
+    assert_eq!(
+        read(&dir.join("tilt-map.svg")),
+        read(&tmp.path().join("map.svg"))
+    );
     succeeds(
         tmp.path(),
         &["plot", "s", "--figure", "slices", "-o", "slices.svg"],
@@ -67,7 +77,10 @@ fn plot_redraws_a_sweep_folder_as_the_sweep_drew_it() {
         &["plot", "s", "--metric", "final_tilt", "-o", "final.svg"],
     );
     assert!(read(&tmp.path().join("final.svg")).contains("tilt"));
-    let out = tumble_in(tmp.path(), &["plot", "s", "--metric", "nope", "-o", "x.svg"]);
+    let out = tumble_in(
+        tmp.path(),
+        &["plot", "s", "--metric", "nope", "-o", "x.svg"],
+    );
     assert_eq!(out.status.code(), Some(1));
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("max_tilt"), "{err}");
@@ -119,10 +132,15 @@ fn svg_embeds_the_shipped_font_and_keeps_hundredths_of_a_pixel() {
     let svg = read(&dir.join("run.svg"));
     // The font: an @font-face with TrueType data (a TrueType file starts 00 01 00 00, which
     // base64 writes AAEAAA), and text set in its family.
-    assert!(svg.contains("@font-face{font-family:'DejaVu Sans';src:url(data:font/ttf;base64,AAEAAA"));
+    assert!(
+        svg.contains("@font-face{font-family:'DejaVu Sans';src:url(data:font/ttf;base64,AAEAAA")
+    );
     assert!(svg.contains(r#"font-family="DejaVu Sans""#));
     let tree = usvg::Tree::from_str(&svg, &usvg::Options::default()).expect("well-formed SVG");
-    assert_eq!((tree.size().width(), tree.size().height()), (1100.0, svg_height(&svg)));
+    assert_eq!(
+        (tree.size().width(), tree.size().height()),
+        (1100.0, svg_height(&svg))
+    );
     // Coordinates are in hundredths of a pixel: the view box is 100 times the size.
     assert!(svg.contains(r#"viewBox="0 0 110000 "#), "{}", &svg[..300]);
     // Text as paths: no <text> left, and usvg reads it back.
@@ -267,8 +285,12 @@ fn legends_and_curves(svg: &str) -> (Boxes, Curves) {
 /// polyline wholly inside a box is the box's own sample and does not count.
 fn covered_points(svg: &str) -> usize {
     let (boxes, curves) = legends_and_curves(svg);
-    assert!(!boxes.is_empty() && !curves.is_empty(), "no legend or curve");
-    let inside = |b: &[f64; 4], (x, y): (f64, f64)| b[0] <= x && x <= b[2] && b[1] <= y && y <= b[3];
+    assert!(
+        !boxes.is_empty() && !curves.is_empty(),
+        "no legend or curve"
+    );
+    let inside =
+        |b: &[f64; 4], (x, y): (f64, f64)| b[0] <= x && x <= b[2] && b[1] <= y && y <= b[3];
     let mut covered = 0;
     for b in &boxes {
         for curve in &curves {
@@ -314,20 +336,39 @@ fn legends_cover_no_curve_of_the_shipped_figures() {
     succeeds(
         dir,
         &[
-            "work-precision", "free-body", "--t-end", "1", "--max-seconds", "0.02",
-            "--integrators", "split2,split4,rk4,dop853,gauss4,lgvi", "-o", "wp",
+            "work-precision",
+            "free-body",
+            "--t-end",
+            "1",
+            "--max-seconds",
+            "0.02",
+            "--integrators",
+            "split2,split4,rk4,dop853,gauss4,lgvi",
+            "-o",
+            "wp",
         ],
     );
     succeeds(
         dir,
         &[
-            "work-precision", "free-body", "--long", "--long-steps", "4000", "--integrators",
-            "split2,lgvi", "-o", "long",
+            "work-precision",
+            "free-body",
+            "--long",
+            "--long-steps",
+            "4000",
+            "--integrators",
+            "split2,lgvi",
+            "-o",
+            "long",
         ],
     );
     let file = write_sweep(dir, "small.sweep.toml", &small(0.5, 4));
     succeeds(dir, &["sweep", file.to_str().unwrap(), "-o", "s"]);
-    for svg in ["wp/work-precision.svg", "long/long.svg", "s/tilt-slices.svg"] {
+    for svg in [
+        "wp/work-precision.svg",
+        "long/long.svg",
+        "s/tilt-slices.svg",
+    ] {
         assert_eq!(covered_points(&read(&dir.join(svg))), 0, "{svg}");
     }
 }
