@@ -9,7 +9,7 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result, bail};
-use tumble_scenarios::{StepControl, scenes};
+use tumble_scenarios::{Params, Scene, StepControl, scenes};
 use tumble_studies::sweep;
 
 use super::args::FigureArgs;
@@ -150,29 +150,30 @@ fn field<'a>(json: &'a serde_json::Value, key: &str, path: &Path) -> Result<&'a 
         .with_context(|| format!("{}: no `{key}` string", path.display()))
 }
 
-/// The scene named in a record and its parameter values in the scene's order.
-fn scene_and_parameters(
+/// The scene named in a record and its parameters (the scene's defaults for any the record
+/// leaves out).
+pub(crate) fn scene_and_parameters(
     json: &serde_json::Value,
     path: &Path,
-) -> Result<(
-    &'static tumble_scenarios::SceneInfo,
-    Vec<(&'static str, f64)>,
-)> {
+) -> Result<(&'static dyn Scene, Params)> {
     let name = field(json, "scene", path)?;
     let scene = scenes::find(name).with_context(|| format!("{}: scene", path.display()))?;
-    let info = scene.info();
     let given: BTreeMap<String, f64> = serde_json::from_value(json["parameters"].clone())
         .with_context(|| format!("{}: `parameters` is not a table of numbers", path.display()))?;
-    let params = info
-        .parameters
-        .iter()
-        .map(|p| (p.name, given.get(p.name).copied().unwrap_or(p.default)))
-        .collect();
-    Ok((info, params))
+    let mut params = scene.info().default_params();
+    for (name, value) in &given {
+        params
+            .set(name, *value)
+            .with_context(|| format!("{}: parameter {name}", path.display()))?;
+    }
+    Ok((scene, params))
 }
 
-/// The figure of a `simulate` CSV and its record.
-fn simulation_figure(csv_path: &Path, args: &Args) -> Result<plot::xy::StackedFigure> {
+/// The record `FILE.csv.json` that `simulate -o FILE.csv` writes beside its CSV, read.
+///
+/// # Errors
+/// No record beside the CSV, or one that is not JSON.
+pub(crate) fn simulation_record(csv_path: &Path) -> Result<(PathBuf, serde_json::Value)> {
     let mut record_path = csv_path.as_os_str().to_owned();
     record_path.push(".json");
     let record_path = PathBuf::from(record_path);
@@ -185,7 +186,14 @@ fn simulation_figure(csv_path: &Path, args: &Args) -> Result<plot::xy::StackedFi
         );
     }
     let record = read_json(&record_path)?;
-    let (info, params) = scene_and_parameters(&record, &record_path)?;
+    Ok((record_path, record))
+}
+
+/// The figure of a `simulate` CSV and its record.
+fn simulation_figure(csv_path: &Path, args: &Args) -> Result<plot::xy::StackedFigure> {
+    let (record_path, record) = simulation_record(csv_path)?;
+    let (scene, params) = scene_and_parameters(&record, &record_path)?;
+    let info = scene.info();
     let step = match (record["dt"].as_f64(), record["tol"].as_f64()) {
         (Some(h), _) => StepControl::Fixed(h),
         (None, Some(t)) => StepControl::Tolerance(t),
@@ -234,7 +242,7 @@ fn simulation_figure(csv_path: &Path, args: &Args) -> Result<plot::xy::StackedFi
         info,
         integrator,
         &super::simulate::step_words(step),
-        params.into_iter(),
+        params.iter(),
         &columns,
         &values,
     ))
@@ -252,7 +260,7 @@ fn parse_range(s: &str) -> Result<(f64, f64)> {
 }
 
 /// A numeric CSV's header and its values column by column; `t` must be the first column.
-fn read_columns(path: &Path) -> Result<(Vec<String>, Vec<Vec<f64>>)> {
+pub(crate) fn read_columns(path: &Path) -> Result<(Vec<String>, Vec<Vec<f64>>)> {
     let mut reader = csv::Reader::from_path(path)
         .with_context(|| format!("{}: cannot read it", path.display()))?;
     let columns: Vec<String> = reader.headers()?.iter().map(str::to_string).collect();
@@ -296,7 +304,8 @@ struct RungRow {
 fn work_precision_figure(dir: &Path) -> Result<plot::xy::StackedFigure> {
     let manifest_path = dir.join("manifest.json");
     let manifest = read_json(&manifest_path)?;
-    let (info, params) = scene_and_parameters(&manifest, &manifest_path)?;
+    let (scene, params) = scene_and_parameters(&manifest, &manifest_path)?;
+    let info = scene.info();
     let reference = &manifest["reference"];
     let agreement = reference["agreement"]
         .as_f64()
@@ -331,7 +340,7 @@ fn work_precision_figure(dir: &Path) -> Result<plot::xy::StackedFigure> {
     let study = plot::work_precision::Study {
         scene: info.name,
         t_end,
-        parameters: plot::labels::parameters(params.into_iter()),
+        parameters: plot::labels::parameters(params.iter()),
         reference: (
             field(reference, "method", &manifest_path)?,
             field(reference, "cross_check", &manifest_path)?,
