@@ -51,7 +51,7 @@ pub fn parse_triple(flag: &str, s: &str) -> Result<Vector3<f64>> {
 #[derive(Debug, Clone, Default, clap::Args)]
 pub struct FigureArgs {
     /// Figure size: `single` (a 3.4 in journal column) or `double` (7 in), at 300 dpi, the
-    /// height keeping the figure's proportions; or WxH in inches, cm or mm (`7x4`,
+    /// figure choosing its height for the width; or WxH in inches, cm or mm (`7x4`,
     /// `180x120mm`). Default: the figure's own size in pixels.
     #[arg(long = "figure-size", value_name = "single|double|WxH")]
     pub figure_size: Option<String>,
