@@ -346,6 +346,25 @@ mod tests {
     }
 
     #[test]
+    fn a_single_column_png_is_1020_pixels_wide_at_300_dpi() {
+        let opts = FigureOptions {
+            size: Some(options::Size::parse("single").unwrap()),
+            ..FigureOptions::default()
+        };
+        let bytes = render(&figure(), Format::Png, &opts).unwrap();
+        let reader = png::Decoder::new(std::io::Cursor::new(bytes))
+            .read_info()
+            .unwrap();
+        let info = reader.info();
+        // 3.4 in at 300 dpi, to the rounding of the layout to whole pixels.
+        assert!((i64::from(info.width) - 1020).abs() <= 3, "{}", info.width);
+        let dims = info.pixel_dims.unwrap();
+        assert_eq!(dims.unit, png::Unit::Meter);
+        // 300 dots per inch is 11811 per metre.
+        assert_eq!(dims.xppu, 11811);
+    }
+
+    #[test]
     fn downsampling_averages_blocks() {
         // 2 × 1 image at k = 2: a black block and a half-white block.
         let mut big = vec![0u8; 4 * 2 * 3];
