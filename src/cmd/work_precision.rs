@@ -54,6 +54,9 @@ pub struct Args {
     /// Steps of a long run (at the scene's default step).
     #[arg(long = "long-steps", value_name = "N", default_value_t = 1 << 20)]
     pub long_steps: u64,
+    /// Size, font size, resolution and SVG text of the figures.
+    #[command(flatten)]
+    pub figure: super::args::FigureArgs,
 }
 
 /// Each run of the reference is limited to this multiple of `--max-seconds`.
@@ -64,6 +67,7 @@ const REFERENCE_FACTOR: f64 = 60.0;
 /// # Errors
 /// Invalid flags (before any run), a failing reference, an unwritable output folder.
 pub fn run(args: &Args) -> Result<()> {
+    let figure_options = args.figure.options()?;
     let LoadedScene {
         scene,
         origin,
@@ -213,7 +217,11 @@ pub fn run(args: &Args) -> Result<()> {
     };
     let figure = plot::work_precision::study_figure(&study, &curves);
     for ext in ["png", "svg"] {
-        plot::save(&figure, &dir.join(format!("work-precision.{ext}")))?;
+        plot::save_with(
+            &figure,
+            &dir.join(format!("work-precision.{ext}")),
+            &figure_options,
+        )?;
     }
     let text = manifest::to_text(&WorkPrecisionManifest::new(
         info.name,
@@ -502,7 +510,11 @@ fn long(
         lines,
     );
     for ext in ["png", "svg"] {
-        plot::save(&figure, &dir.join(format!("long.{ext}")))?;
+        plot::save_with(
+            &figure,
+            &dir.join(format!("long.{ext}")),
+            &args.figure.options()?,
+        )?;
     }
     print!("{table}");
     eprintln!("output          {}", dir.display());

@@ -79,11 +79,13 @@ pub(crate) struct Figures {
     pub slices: plot::xy::StackedFigure,
 }
 
-/// Draws the map and slices of a complete grid sweep; returns the file names written.
+/// Draws the map and slices of a complete grid sweep with `opts`; returns the file names
+/// written.
 pub(crate) fn draw_plots(
     def: &SweepDefinition,
     dir: &Path,
     rows: &[PointRow],
+    opts: &plot::FigureOptions,
 ) -> Result<Vec<String>> {
     let Some(figures) = figures(def, rows, &Choice::default()) else {
         return Ok(Vec::new());
@@ -92,13 +94,13 @@ pub(crate) fn draw_plots(
     for ext in ["png", "svg"] {
         if let Some(map) = &figures.map {
             let name = format!("{}-map.{ext}", figures.stem);
-            plot::save(map, &dir.join(&name))?;
+            plot::save_with(map, &dir.join(&name), opts)?;
             written.push(name);
         }
     }
     for ext in ["png", "svg"] {
         let name = format!("{}-slices.{ext}", figures.stem);
-        plot::save(&figures.slices, &dir.join(&name))?;
+        plot::save_with(&figures.slices, &dir.join(&name), opts)?;
         written.push(name);
     }
     Ok(written)

@@ -85,6 +85,17 @@ fn plot_redraws_a_sweep_folder_as_the_sweep_drew_it() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("max_tilt"), "{err}");
     assert!(!tmp.path().join("x.svg").exists());
+    // A sweep drawn at a journal's column width and redrawn so.
+    let journal = ["--figure-size", "single", "--font-size", "9"];
+    let mut args = vec!["sweep", file.to_str().unwrap(), "-o", "j"];
+    args.extend(journal);
+    succeeds(tmp.path(), &args);
+    let mut args = vec!["plot", "j", "-o", "j.svg"];
+    args.extend(journal);
+    succeeds(tmp.path(), &args);
+    let map = read(&tmp.path().join("j/tilt-map.svg"));
+    assert_eq!(map, read(&tmp.path().join("j.svg")));
+    assert!(map.contains(r#"<svg width="3.4000in""#), "{}", &map[..200]);
 }
 
 #[test]
