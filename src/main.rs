@@ -30,7 +30,7 @@ struct Cli {
 
 #[derive(Subcommand, Debug)]
 enum Command {
-    /// A scene in motion as an animated GIF: a 3D view of the body with a trail
+    /// A scene in motion as an animated GIF (or MP4 with ffmpeg): a 3D view of the body with a trail
     Animate(cmd::animate::Args),
     /// The atlas of every integrator on a battery of cases that break integrators
     HardCases(cmd::hard_cases::Args),
@@ -40,6 +40,9 @@ enum Command {
     Integrators(cmd::integrators::Args),
     /// Angular velocity from Euler angles and rates, in the space and body frames
     Kinematics(cmd::kinematics::Args),
+    /// Redraw a saved result (a simulate CSV, a sweep or work–precision folder) as PNG, SVG or
+    /// PDF without recomputing it
+    Plot(cmd::plot::Args),
     /// List the built-in scenes: coordinates, parameters, defaults, integrators
     Scenes(cmd::scenes::Args),
     /// Run a scene (built-in or TOML file) and write its trajectory as CSV, optionally a plot
@@ -62,6 +65,7 @@ fn main() -> ExitCode {
         Command::Inertia(args) => cmd::inertia::run(&args, matches.subcommand_matches("inertia")),
         Command::Integrators(args) => cmd::integrators::run(&args),
         Command::Kinematics(args) => cmd::kinematics::run(&args),
+        Command::Plot(args) => cmd::plot::run(&args),
         Command::Scenes(args) => cmd::scenes::run(&args),
         Command::Simulate(args) => cmd::simulate::run(&args),
         Command::Sweep(args) => cmd::sweep::run(&args),

@@ -1,5 +1,6 @@
-//! `tumble animate`: a scene in motion as an animated GIF — the hoop as a ring with its bead,
-//! the free body as its equivalent box, the top as its axis and disk — with a trail and a
+//! `tumble animate`: a scene in motion as an animated GIF (or an MP4, encoded by `ffmpeg` when
+//! it is installed) — the hoop as a ring with its bead, the free body as its equivalent box,
+//! the T-handle as the outline of its mesh, the top as its axis and disk — with a trail and a
 //! readout of the time and the energy error. Frames are the scene's rows at equal times, from
 //! the integrator's dense output (`--at`), so the animation does not depend on the steps.
 
@@ -16,7 +17,8 @@ use crate::plot::animation::{Line, Shot, View, circle, write_gif};
 /// Flags of `tumble animate`.
 #[derive(clap::Args, Debug)]
 pub struct Args {
-    /// The scene and its parameter overrides.
+    /// The scene and its parameter overrides, or a saved `simulate` CSV (`FILE.csv`, its
+    /// `FILE.csv.json` beside it) to animate without recomputing.
     #[command(flatten)]
     pub target: SceneArgs,
     /// Simulated seconds [default: the scene's horizon].
@@ -31,7 +33,7 @@ pub struct Args {
     /// Frame size in pixels, `WxH`.
     #[arg(long, value_name = "WxH", default_value = "640x480")]
     pub size: String,
-    /// Output file (`.gif`).
+    /// Output file: `.gif`, or `.mp4` (encoded by ffmpeg, which must be installed).
     #[arg(
         short = 'o',
         long = "output",
@@ -61,21 +63,39 @@ const MAX_FRAMES: u64 = 10_000;
 /// Invalid flags (before any step), a scene without a 3D view, a failing run, an unwritable
 /// output.
 pub fn run(args: &Args) -> Result<()> {
-    let LoadedScene { scene, params, .. } = load_scene(&args.target)?;
+    let csv = args.target.scene.to_ascii_lowercase().ends_with(".csv");
+    let (scene, params, saved) = if csv {
+        if !args.target.set.is_empty() {
+            bail!("--set changes a simulation's parameters; a saved CSV keeps its own");
+        }
+        if args.t_end.is_some() {
+            bail!("--t-end: a saved CSV is shown over all its rows");
+        }
+        let path = std::path::Path::new(&args.target.scene);
+        let (record_path, record) = super::plot::simulation_record(path)?;
+        let (scene, params) = super::plot::scene_and_parameters(&record, &record_path)?;
+        let saved = super::plot::read_columns(path)?;
+        (scene, params, Some((saved, record)))
+    } else {
+        let LoadedScene { scene, params, .. } = load_scene(&args.target)?;
+        (scene, params, None)
+    };
     let info = scene.info();
     let ext = args
         .output
         .extension()
         .map(|e| e.to_string_lossy().to_ascii_lowercase());
-    match ext.as_deref() {
-        Some("gif") => {}
-        Some("mp4") => bail!(
-            "{}: tumble writes animations as GIF; for an MP4, write a .gif and convert it, e.g. \
-             `ffmpeg -i animation.gif -pix_fmt yuv420p animation.mp4`",
+    let mp4 = match ext.as_deref() {
+        Some("gif") => false,
+        Some("mp4") => {
+            ffmpeg_present(&args.output)?;
+            true
+        }
+        _ => bail!(
+            "{}: expected a .gif file (or .mp4 with ffmpeg installed)",
             args.output.display()
         ),
-        _ => bail!("{}: expected a .gif file", args.output.display()),
-    }
+    };
     let (w, h) = parse_size(&args.size)?;
     if !(args.fps.is_finite() && args.fps > 0.0 && args.fps <= 100.0) {
         bail!(
@@ -83,7 +103,13 @@ pub fn run(args: &Args) -> Result<()> {
             args.fps
         );
     }
-    let t_end = args.t_end.unwrap_or(info.default_t_end);
+    let t_end = match &saved {
+        Some(((_, values), _)) => match values.first().map(Vec::as_slice) {
+            Some([first, .., last]) if last > first => last - first,
+            _ => bail!("{}: fewer than two rows to animate", args.target.scene),
+        },
+        None => args.t_end.unwrap_or(info.default_t_end),
+    };
     if !(t_end.is_finite() && t_end > 0.0) {
         bail!("--t-end {t_end}: expected a positive number of seconds");
     }
@@ -104,20 +130,27 @@ pub fn run(args: &Args) -> Result<()> {
     let times: Vec<f64> = (0..frames)
         .map(|k| t_end * k as f64 / (frames - 1).max(1) as f64)
         .collect();
-    let plan = RunOptions {
-        t_end: Some(t_end),
-        at: Some(times),
-        ..RunOptions::default()
-    }
-    .resolve(info)?;
-    let mut rows = Rows::default();
-    scene.simulate(&params, &plan, &mut rows)?;
-    let columns = info.columns();
+    let (rows, columns, integrator) = match saved {
+        Some(((columns, values), record)) => {
+            let integrator = record["integrator"].as_str().unwrap_or("?").to_string();
+            (saved_rows(&values, &times), columns, integrator)
+        }
+        None => {
+            let plan = RunOptions {
+                t_end: Some(t_end),
+                at: Some(times),
+                ..RunOptions::default()
+            }
+            .resolve(info)?;
+            let mut rows = Rows::default();
+            scene.simulate(&params, &plan, &mut rows)?;
+            (rows.0, info.columns(), plan.integrator().to_string())
+        }
+    };
     let col = |name: &str| columns.iter().position(|c| c == name);
     let energy = col("energy_rel_err");
     let mut trail: Vec<[f64; 3]> = Vec::new();
     let shots: Vec<Shot> = rows
-        .0
         .iter()
         .map(|row| {
             let mut shot = painter.shot(row, &col);
@@ -150,8 +183,36 @@ pub fn run(args: &Args) -> Result<()> {
         elevation: 0.35,
         radius: painter.radius,
     };
-    let title = format!("{}: {}", info.name, plan.integrator());
-    write_gif(&args.output, &view, &title, &shots, args.fps)?;
+    let title = format!("{}: {integrator}", info.name);
+    if mp4 {
+        // The GIF's frames (a temporary file), encoded by ffmpeg (even dimensions, yuv420p:
+        // what players take) into a file beside the output, renamed over it when complete.
+        let gif = tempfile::Builder::new().suffix(".gif").tempfile()?;
+        write_gif(gif.path(), &view, &title, &shots, args.fps)?;
+        let dest = crate::output::Destination::check(&args.output)?;
+        let scratch = dest.scratch()?;
+        let status = std::process::Command::new("ffmpeg")
+            .args(["-y", "-loglevel", "error", "-i"])
+            .arg(gif.path())
+            .args([
+                "-vf",
+                "scale=trunc(iw/2)*2:trunc(ih/2)*2",
+                "-pix_fmt",
+                "yuv420p",
+                "-movflags",
+                "+faststart",
+                "-f",
+                "mp4",
+            ])
+            .arg(scratch.as_os_str())
+            .status()?;
+        if !status.success() {
+            bail!("{}: ffmpeg failed ({status})", args.output.display());
+        }
+        dest.commit_scratch(scratch)?;
+    } else {
+        write_gif(&args.output, &view, &title, &shots, args.fps)?;
+    }
     eprintln!(
         "animation    {} frames of {} over t in [0, {t_end}] s, {:.1} s at {} fps",
         shots.len(),
@@ -161,6 +222,82 @@ pub fn run(args: &Args) -> Result<()> {
     );
     eprintln!("output       {}", args.output.display());
     Ok(())
+}
+
+/// The rows of a saved CSV (`values` column by column, `t` first) nearest the frame times
+/// `times` (measured from its first row): rows at equal times when the CSV has them
+/// (`simulate --output-dt`).
+fn saved_rows(values: &[Vec<f64>], times: &[f64]) -> Vec<Vec<f64>> {
+    let t = values.first().map_or(&[][..], Vec::as_slice);
+    let t0 = t.first().copied().unwrap_or(0.0);
+    times
+        .iter()
+        .map(|&s| {
+            let target = t0 + s;
+            let i = t.partition_point(|&x| x < target).min(t.len() - 1);
+            let k = if i > 0 && (target - t[i - 1]) <= (t[i] - target) {
+                i - 1
+            } else {
+                i
+            };
+            values.iter().map(|column| column[k]).collect()
+        })
+        .collect()
+}
+
+/// Checks that `ffmpeg` runs, for writing `output` as MP4.
+fn ffmpeg_present(output: &std::path::Path) -> Result<()> {
+    let runs = std::process::Command::new("ffmpeg")
+        .arg("-version")
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .status()
+        .is_ok_and(|s| s.success());
+    if !runs {
+        bail!(
+            "{}: an MP4 is encoded by ffmpeg, which is not installed (not found on PATH); \
+             install it (Debian: apt-get install ffmpeg) or write a .gif",
+            output.display()
+        );
+    }
+    Ok(())
+}
+
+/// The `dzhanibekov` scene's T-handle: the outline of its mesh (front cap, corners 0–7, and
+/// back cap, 8–15, as [`tumble_inertia::THandle::mesh`] orders them) about its centre of mass,
+/// in the frame its orientation rotates; the trail follows the intermediate principal axis,
+/// the one it flips about.
+fn t_handle() -> Result<Painter> {
+    use tumble_inertia::{MassSpec, THandle};
+    let mesh = THandle::STANDARD.mesh()?;
+    let props = THandle::STANDARD.mass_properties(MassSpec::TotalMass(1.0))?;
+    let c = props.center_of_mass();
+    let v: Vec<[f64; 3]> = mesh
+        .vertices()
+        .iter()
+        .map(|p| [p.x - c.x, p.y - c.y, p.z - c.z])
+        .collect();
+    if v.len() != 16 {
+        bail!("the T-handle mesh has {} vertices, not 16", v.len());
+    }
+    let reach = v
+        .iter()
+        .map(|p| p.iter().map(|x| x * x).sum::<f64>().sqrt())
+        .fold(0.0, f64::max);
+    let closed = |k: std::ops::Range<usize>| {
+        let mut l = v[k.clone()].to_vec();
+        l.push(v[k.start]);
+        l
+    };
+    let axis = props.principal().axes.matrix().column(1).into_owned() * 1.1 * reach;
+    Ok(Painter {
+        look: Look::Prism {
+            front: closed(0..8),
+            back: closed(8..16),
+            tip: [axis.x, axis.y, axis.z],
+        },
+        radius: 1.3 * reach,
+    })
 }
 
 /// `WxH` in pixels, each 64…4096.
@@ -184,6 +321,13 @@ enum Look {
     Box { half: [f64; 3] },
     /// A symmetric top: its axis along body z from the pivot and a disk at its end.
     Top,
+    /// A prism (the T-handle): its front and back outlines and the point the trail follows,
+    /// in the body frame about the centre of mass.
+    Prism {
+        front: Vec<[f64; 3]>,
+        back: Vec<[f64; 3]>,
+        tip: [f64; 3],
+    },
 }
 
 /// Draws a scene's rows.
@@ -234,9 +378,10 @@ impl Painter {
                 look: Look::Top,
                 radius: 1.5,
             },
+            "dzhanibekov" => t_handle()?,
             other => bail!(
-                "animate draws free-hoop, spinning-hoop, driven-hoop, free-body and heavy-top; \
-                 `{other}` has no 3D view"
+                "animate draws free-hoop, spinning-hoop, driven-hoop, free-body, dzhanibekov and \
+                 heavy-top; `{other}` has no 3D view"
             ),
         })
     }
@@ -315,6 +460,27 @@ impl Painter {
                 // The trail follows the end of the intermediate axis (the Dzhanibekov flip).
                 shot.dots
                     .insert(0, (rotate([0.0, 1.2 * half[1].max(0.3), 0.0]), 5, red));
+            }
+            Look::Prism {
+                ref front,
+                ref back,
+                tip,
+            } => {
+                shot.dots.push((rotate(tip), 5, red));
+                for outline in [front, back] {
+                    shot.lines.push(Line {
+                        points: outline.iter().map(|&p| rotate(p)).collect(),
+                        colour: blue,
+                        width: 2,
+                    });
+                }
+                for (&a, &b) in front.iter().zip(back).take(front.len() - 1) {
+                    shot.lines.push(Line {
+                        points: vec![rotate(a), rotate(b)],
+                        colour: blue,
+                        width: 2,
+                    });
+                }
             }
             Look::Top => {
                 let tip = rotate([0.0, 0.0, 1.0]);

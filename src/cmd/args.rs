@@ -47,6 +47,47 @@ pub fn parse_triple(flag: &str, s: &str) -> Result<Vector3<f64>> {
     Ok(v)
 }
 
+/// The figure options of every command that draws: size, font size, resolution, SVG text.
+#[derive(Debug, Clone, Default, clap::Args)]
+pub struct FigureArgs {
+    /// Figure size: `single` (a 3.4 in journal column) or `double` (7 in), at 300 dpi, the
+    /// figure choosing its height for the width; or WxH in inches, cm or mm (`7x4`,
+    /// `180x120mm`). Default: the figure's own size in pixels.
+    #[arg(long = "figure-size", value_name = "single|double|WxH")]
+    pub figure_size: Option<String>,
+    /// Size of axis labels and legends in points (default 8 pt with --figure-size).
+    #[arg(long = "font-size", value_name = "PT")]
+    pub font_size: Option<f64>,
+    /// Resolution of PNGs in dots per inch (default 300 with --figure-size, else 96).
+    #[arg(long, value_name = "N")]
+    pub dpi: Option<f64>,
+    /// SVG text: `font` keeps selectable text in the embedded shipped font, `paths` converts
+    /// every glyph to a path.
+    #[arg(long = "svg-text", value_enum, default_value_t)]
+    pub svg_text: crate::plot::options::SvgText,
+}
+
+impl FigureArgs {
+    /// The options, checked.
+    ///
+    /// # Errors
+    /// A malformed size, or a font size or resolution out of range.
+    pub fn options(&self) -> Result<crate::plot::FigureOptions> {
+        let opts = crate::plot::FigureOptions {
+            size: self
+                .figure_size
+                .as_deref()
+                .map(crate::plot::options::Size::parse)
+                .transpose()?,
+            font_pt: self.font_size,
+            dpi: self.dpi,
+            svg_text: self.svg_text,
+        };
+        opts.validate()?;
+        Ok(opts)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

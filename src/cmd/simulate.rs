@@ -101,10 +101,12 @@ pub struct Args {
     /// Write the CSV to FILE instead of stdout (`-` is stdout).
     #[arg(short = 'o', long = "output", value_name = "FILE.csv")]
     pub output: Option<PathBuf>,
-    /// Also draw the coordinates, rates and relative energy error against time, as PNG or SVG
-    /// by the file's extension.
-    #[arg(long, value_name = "FILE.png|FILE.svg")]
+    /// Also draw the coordinates, rates and relative energy error against time, as PNG, SVG
+    /// or PDF by the file's extension.
+    #[arg(long, value_name = "FILE.png|FILE.svg|FILE.pdf")]
     pub plot: Option<PathBuf>,
+    #[command(flatten)]
+    pub figure: super::args::FigureArgs,
 }
 
 /// A scene with its parameters and run options, validated, ready to run.
@@ -429,19 +431,6 @@ fn failure_state(e: &SceneError) -> Option<&[f64]> {
     }
 }
 
-/// The names of a scene's rate columns: `<coordinate>_dot`, or the scene's own rate names
-/// (a rotation's body angular velocity).
-fn rate_columns(info: &SceneInfo) -> Vec<String> {
-    if info.rate_names.is_empty() {
-        info.coordinates
-            .iter()
-            .map(|c| format!("{c}_dot"))
-            .collect()
-    } else {
-        info.rate_names.iter().map(|r| (*r).to_string()).collect()
-    }
-}
-
 /// A run failure with the state it carries, named by the scene's coordinates and rates when
 /// the state has one value for each.
 fn failure_message(info: &SceneInfo, e: &SceneError) -> String {
@@ -451,7 +440,7 @@ fn failure_message(info: &SceneInfo, e: &SceneError) -> String {
             .coordinates
             .iter()
             .map(|c| (*c).to_string())
-            .chain(rate_columns(info))
+            .chain(plot::trajectory::rate_columns(info))
             .collect();
         if names.len() == state.len() {
             let parts: Vec<String> = names
@@ -531,7 +520,7 @@ impl<W: Write> Recorder for CsvRecorder<W> {
     }
 }
 
-fn step_words(step: StepControl) -> String {
+pub(crate) fn step_words(step: StepControl) -> String {
     match step {
         StepControl::Fixed(h) => format!("fixed step dt = {h} s"),
         StepControl::Tolerance(tol) => format!("tolerance {}", number(tol)),
@@ -640,6 +629,7 @@ pub fn run(args: &Args) -> Result<()> {
     if let Some(path) = &args.plot {
         plot::Format::from_path(path)?;
     }
+    let figure_options = args.figure.options()?;
     // Every output is classified before the first step: a directory or a socket is refused
     // now, a device or FIFO is streamed to, and -o and --plot may not name one file.
     let outputs: Vec<(&str, &Path)> = [
@@ -717,30 +707,15 @@ pub fn run(args: &Args) -> Result<()> {
     }
 
     if let (Some(dest), Some(values)) = (&plot_dest, &kept) {
-        let columns = info.columns();
-        let rates = rate_columns(info);
-        let run = plot::trajectory::Run {
-            columns: &columns,
+        let figure = plot::trajectory::simulation(
+            info,
+            setup.plan.integrator(),
+            &step_words(setup.plan.step),
+            setup.params.iter(),
+            &info.columns(),
             values,
-            coordinates: info.coordinates,
-            rates: &rates,
-        };
-        let mut figure = plot::trajectory::figure(
-            format!(
-                "{} — {}, {}",
-                info.name,
-                setup.plan.integrator(),
-                step_words(setup.plan.step)
-            ),
-            &run,
         );
-        figure.subtitle = setup
-            .params
-            .iter()
-            .map(|(k, v)| format!("{k} = {v}"))
-            .collect::<Vec<_>>()
-            .join(", ");
-        plot::save_to(&figure, dest)?;
+        plot::save_to(&figure, dest, &figure_options)?;
     }
     if let Some(dest) = &sidecar {
         let text = manifest::to_text(&SimulationRecord::new(

@@ -20,7 +20,6 @@ use super::simulate::{LoadedScene, SceneArgs, flag_words, load_scene, number};
 use crate::manifest::{self, WorkPrecisionManifest};
 use crate::output;
 use crate::plot;
-use crate::plot::sweep::round_for_label;
 use crate::plot::work_precision::Curve;
 use crate::plot::xy::Series;
 use crate::signals;
@@ -55,6 +54,9 @@ pub struct Args {
     /// Steps of a long run (at the scene's default step).
     #[arg(long = "long-steps", value_name = "N", default_value_t = 1 << 20)]
     pub long_steps: u64,
+    /// Size, font size, resolution and SVG text of the figures.
+    #[command(flatten)]
+    pub figure: super::args::FigureArgs,
 }
 
 /// Each run of the reference is limited to this multiple of `--max-seconds`.
@@ -65,6 +67,7 @@ const REFERENCE_FACTOR: f64 = 60.0;
 /// # Errors
 /// Invalid flags (before any run), a failing reference, an unwritable output folder.
 pub fn run(args: &Args) -> Result<()> {
+    let figure_options = args.figure.options()?;
     let LoadedScene {
         scene,
         origin,
@@ -193,19 +196,12 @@ pub fn run(args: &Args) -> Result<()> {
         &dir.join("work-precision.csv"),
         csv_text(&ladders)?.as_bytes(),
     )?;
-    let title = format!("{}: error at t = {t_end} s against cost", info.name);
-    let subtitle = format!(
-        "{}; reference: {} (cross-check {}: {:.1e})",
-        parameter_words(&params),
-        reference.method,
-        reference.check,
-        reference.agreement
-    );
     let curves: Vec<Curve> = ladders
         .iter()
         .filter(|l| !l.rungs.is_empty())
         .map(|l| Curve {
-            label: method_label(l),
+            integrator: l.integrator.clone(),
+            label: plot::work_precision::curve_label(&l.integrator, l.order),
             rungs: l
                 .rungs
                 .iter()
@@ -213,9 +209,19 @@ pub fn run(args: &Args) -> Result<()> {
                 .collect(),
         })
         .collect();
-    let figure = plot::work_precision::figure(title, subtitle, &curves);
+    let study = plot::work_precision::Study {
+        scene: info.name,
+        t_end,
+        parameters: plot::labels::parameters(params.iter()),
+        reference: (&reference.method, &reference.check, reference.agreement),
+    };
+    let figure = plot::work_precision::study_figure(&study, &curves);
     for ext in ["png", "svg"] {
-        plot::save(&figure, &dir.join(format!("work-precision.{ext}")))?;
+        plot::save_with(
+            &figure,
+            &dir.join(format!("work-precision.{ext}")),
+            &figure_options,
+        )?;
     }
     let text = manifest::to_text(&WorkPrecisionManifest::new(
         info.name,
@@ -260,14 +266,7 @@ fn folder_files(stem: &str) -> Vec<String> {
         .collect()
 }
 
-/// `rk4 (4)`, `exact`.
-fn method_label(l: &Ladder) -> String {
-    match l.order {
-        Some(p) => format!("{} ({p})", l.integrator),
-        None => format!("{} (exact)", l.integrator),
-    }
-}
-
+/// A rung's step or tolerance: `dt = 1.000e-2`, `tol = 1.0e-8`.
 fn control_words(c: StepControl) -> String {
     match c {
         StepControl::Fixed(h) => format!("dt = {h:.3e}"),
@@ -283,14 +282,6 @@ fn seconds(s: f64) -> String {
     } else {
         format!("{s:.3} s")
     }
-}
-
-fn parameter_words(params: &Params) -> String {
-    params
-        .iter()
-        .map(|(k, v)| format!("{k} = {}", round_for_label(v)))
-        .collect::<Vec<_>>()
-        .join(", ")
 }
 
 /// The CSV: one row per rung.
@@ -509,7 +500,7 @@ fn long(
         ),
         format!(
             "dt = {h} s; {}{}",
-            parameter_words(params),
+            plot::labels::parameters(params.iter()),
             if matched.is_empty() {
                 String::new()
             } else {
@@ -519,7 +510,11 @@ fn long(
         lines,
     );
     for ext in ["png", "svg"] {
-        plot::save(&figure, &dir.join(format!("long.{ext}")))?;
+        plot::save_with(
+            &figure,
+            &dir.join(format!("long.{ext}")),
+            &args.figure.options()?,
+        )?;
     }
     print!("{table}");
     eprintln!("output          {}", dir.display());

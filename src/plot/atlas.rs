@@ -77,6 +77,9 @@ impl Figure for Atlas {
         (w.max(900), h)
     }
 
+    /// The atlas's cells have a fixed size: it keeps its own.
+    fn set_size(&mut self, _size: (u32, u32)) {}
+
     fn draw<DB: DrawingBackend>(
         &self,
         root: &DrawingArea<DB, plotters::coord::Shift>,

@@ -64,6 +64,8 @@ pub struct Heatmap {
     pub x_log: bool,
     /// Draw y on a base-10 logarithmic scale.
     pub y_log: bool,
+    /// Colour by `log10` of the value (values `≤ 0` are drawn as missing).
+    pub value_log: bool,
     /// Width and height in pixels.
     pub size: (u32, u32),
 }
@@ -78,15 +80,10 @@ fn drawn(values: &[f64], log: bool) -> Vec<f64> {
     }
 }
 
-/// Labels of a logarithmic axis drawn in `log10` units: `1e-4` at whole decades, two
-/// significant digits between them.
+/// Labels of a logarithmic axis drawn in `log10` units: `10⁻⁴` at whole decades, two
+/// significant digits between them (`3.2×10⁻⁴`).
 pub(crate) fn log_labels(v: &f64) -> String {
-    let value = 10f64.powf(*v);
-    if (v - v.round()).abs() < 1e-9 {
-        format!("{:.0e}", 10f64.powf(v.round()))
-    } else {
-        format!("{value:.1e}")
-    }
+    super::log_axis::power_label(10f64.powf(*v))
 }
 
 /// Cell edges of grid values `v`: midpoints between neighbours, and as far again outside.
@@ -114,13 +111,7 @@ impl Heatmap {
         if let Some(r) = self.range {
             return r;
         }
-        let finite = self
-            .values
-            .iter()
-            .flatten()
-            .flatten()
-            .copied()
-            .filter(|v| v.is_finite());
+        let finite = self.values.iter().flatten().filter_map(|v| self.tone(*v));
         let (lo, hi) = finite.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
             (a.min(v), b.max(v))
         });
@@ -133,12 +124,64 @@ impl Heatmap {
         }
     }
 
+    /// What a cell's colour shows: the value, or its `log10` with [`Heatmap::value_log`];
+    /// `None` for a cell drawn as missing.
+    fn tone(&self, v: Option<f64>) -> Option<f64> {
+        let v = v.filter(|v| v.is_finite())?;
+        if self.value_log {
+            (v > 0.0).then(|| v.log10())
+        } else {
+            Some(v)
+        }
+    }
+
     fn has_missing(&self) -> bool {
         self.values
             .iter()
             .flatten()
-            .any(|v| !v.is_some_and(f64::is_finite))
+            .any(|v| self.tone(*v).is_none())
     }
+}
+
+/// The axis range of grid values `v` drawn with cell edges `e`: from the first to the last
+/// grid value, or the single cell's edges.
+fn domain(v: &[f64], e: &[f64]) -> Option<(f64, f64)> {
+    match v {
+        [] => None,
+        [_] => Some((*e.first()?, *e.last()?)),
+        [first, .., last] => Some((*first, *last)),
+    }
+}
+
+/// White text at `at` (device pixels of `root`) with a dark halo of `1.5 · scale` pixels, so
+/// it reads on the lightest and the darkest cells.
+fn halo_text<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    text: &str,
+    at: (i32, i32),
+    pos: Pos,
+    scale: f64,
+) -> DrawResult<DB> {
+    let r = (1.5 * scale).round().max(1.0) as i32;
+    let style = font(15.0 * scale).pos(pos);
+    let dark = RGBColor(20, 20, 20).mix(0.85);
+    for (dx, dy) in [
+        (-r, 0),
+        (r, 0),
+        (0, -r),
+        (0, r),
+        (-r, -r),
+        (r, r),
+        (-r, r),
+        (r, -r),
+    ] {
+        root.draw(&Text::new(
+            text.to_string(),
+            (at.0 + dx, at.1 + dy),
+            style.clone().color(&dark),
+        ))?;
+    }
+    root.draw(&Text::new(text.to_string(), at, style.color(&WHITE)))
 }
 
 /// `v` figure pixels at `scale` device pixels each.
@@ -187,24 +230,17 @@ impl Figure for Heatmap {
         self.size
     }
 
+    fn set_size(&mut self, size: (u32, u32)) {
+        self.size = size;
+    }
+
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>, s: f64) -> DrawResult<DB> {
         let px = |v: u32| px(v, s);
         let line = px(1).max(1);
         root.fill(&WHITE)?;
-        let title_height = if self.subtitle.is_empty() { 44 } else { 68 };
-        let (title, body) = root.split_vertically(px(title_height));
-        title.draw(&Text::new(
-            self.title.clone(),
-            (px(16) as i32, px(12) as i32),
-            font(22.0 * s).color(&BLACK),
-        ))?;
-        if !self.subtitle.is_empty() {
-            title.draw(&Text::new(
-                self.subtitle.clone(),
-                (px(16) as i32, px(42) as i32),
-                font(15.0 * s).color(&RGBColor(64, 64, 64)),
-            ))?;
-        }
+        let band = super::title::Band::new(&self.title, &self.subtitle, self.size.0);
+        let (title, body) = root.split_vertically(px(band.height()));
+        band.draw(&title, s)?;
         let (w, _) = body.dim_in_pixel();
         let bar_width = px(120);
         let (map_area, bar_area) = body.split_horizontally(w.saturating_sub(bar_width));
@@ -213,9 +249,8 @@ impl Figure for Heatmap {
         // log-spaced grid are then of equal size and the edges geometric means).
         let (xs, ys) = (drawn(&self.xs, self.x_log), drawn(&self.ys, self.y_log));
         let (xe, ye) = (edges(&xs), edges(&ys));
-        let (Some(&x0), Some(&x1), Some(&y0), Some(&y1)) =
-            (xe.first(), xe.last(), ye.first(), ye.last())
-        else {
+        // The axes span the swept domain: the outer cells' halves beyond it are clipped.
+        let (Some((x0, x1)), Some((y0, y1))) = (domain(&xs, &xe), domain(&ys, &ye)) else {
             return Ok(());
         };
         let mut chart = ChartBuilder::on(&map_area)
@@ -260,9 +295,9 @@ impl Figure for Heatmap {
         let cells = self.values.iter().enumerate().flat_map(|(j, row)| {
             let (xe, ye) = (&xe, &ye);
             row.iter().enumerate().map(move |(i, v)| {
-                let colour = match v {
-                    Some(v) if v.is_finite() => colour::viridis((v - lo) / (hi - lo)),
-                    _ => MISSING,
+                let colour = match self.tone(*v) {
+                    Some(v) => colour::viridis((v - lo) / (hi - lo)),
+                    None => MISSING,
                 };
                 Rectangle::new([(xe[i], ye[j]), (xe[i + 1], ye[j + 1])], colour.filled())
             })
@@ -281,13 +316,8 @@ impl Figure for Heatmap {
                 PathElement::new(vec![(mx, a), (mx, a + dash)], WHITE.stroke_width(px(2)))
             });
             chart.draw_series(dashes)?;
-            chart.draw_series(std::iter::once(Text::new(
-                marker.label.clone(),
-                (mx, y1),
-                font(15.0 * s)
-                    .color(&WHITE)
-                    .pos(Pos::new(HPos::Left, VPos::Top)),
-            )))?;
+            let at = chart.backend_coord(&(mx, y1));
+            halo_text(root, &marker.label, at, Pos::new(HPos::Left, VPos::Top), s)?;
         }
         for curve in &self.curves {
             let inside: Vec<(f64, f64)> = curve
@@ -303,14 +333,15 @@ impl Figure for Heatmap {
                 .filter(|(k, _)| (k / 4) % 2 == 0)
                 .map(|(_, w)| PathElement::new(vec![w[0], w[1]], WHITE.stroke_width(px(2))));
             chart.draw_series(dashes)?;
-            if let Some(&end) = inside.last() {
-                chart.draw_series(std::iter::once(Text::new(
-                    curve.label.clone(),
-                    end,
-                    font(15.0 * s)
-                        .color(&WHITE)
-                        .pos(Pos::new(HPos::Right, VPos::Bottom)),
-                )))?;
+            if let Some(end) = inside.last() {
+                let at = chart.backend_coord(end);
+                halo_text(
+                    root,
+                    &curve.label,
+                    at,
+                    Pos::new(HPos::Right, VPos::Bottom),
+                    s,
+                )?;
             }
         }
         // Draw the frame again over the cells.
@@ -330,7 +361,14 @@ impl Figure for Heatmap {
             .y_label_area_size(px(0))
             .right_y_label_area_size(px(52))
             .build_cartesian_2d(0.0..1.0, lo..hi)?;
-        let v_fmt = label_for(nice_step(hi - lo, 8));
+        let v_linear = label_for(nice_step(hi - lo, 8));
+        let v_fmt = |v: &f64| {
+            if self.value_log {
+                log_labels(v)
+            } else {
+                v_linear(v)
+            }
+        };
         bar.configure_mesh()
             .disable_mesh()
             .disable_x_axis()
@@ -407,6 +445,7 @@ mod tests {
             }],
             x_log: false,
             y_log: false,
+            value_log: false,
             size: (700, 500),
         }
     }
@@ -418,9 +457,9 @@ mod tests {
         let e = edges(&drawn_ys);
         let widths: Vec<f64> = e.windows(2).map(|w| w[1] - w[0]).collect();
         assert!(widths.iter().all(|w| (w - 1.0).abs() < 1e-12), "{widths:?}");
-        assert_eq!(log_labels(&-4.0), "1e-4");
-        assert_eq!(log_labels(&0.0), "1e0");
-        assert_eq!(log_labels(&-3.5), "3.2e-4");
+        assert_eq!(log_labels(&-4.0), "10⁻⁴");
+        assert_eq!(log_labels(&0.0), "10⁰");
+        assert_eq!(log_labels(&-3.5), "3.2×10⁻⁴");
         assert_eq!(drawn(&ys, false), ys.to_vec());
     }
 

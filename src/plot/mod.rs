@@ -23,10 +23,16 @@ pub mod animation;
 pub mod atlas;
 pub mod colour;
 pub mod heatmap;
+pub mod labels;
+pub mod legend;
+pub mod log_axis;
+pub mod options;
 pub mod slices;
 pub mod sweep;
 pub mod text;
+pub mod title;
 pub mod trajectory;
+pub mod vector;
 pub mod work_precision;
 pub mod xy;
 
@@ -39,6 +45,7 @@ use plotters::prelude::*;
 use plotters::style::{FontStyle, register_font};
 
 use crate::output;
+pub use options::FigureOptions;
 
 /// The font family every figure uses; [`register_fonts`] binds it to the shipped font.
 pub const FONT: &str = "sans-serif";
@@ -67,8 +74,20 @@ pub type DrawResult<DB> = Result<(), DrawingAreaErrorKind<<DB as DrawingBackend>
 
 /// A figure that can draw itself on any plotters backend.
 pub trait Figure {
-    /// Size in pixels (SVG user units).
+    /// Size in layout pixels.
     fn size(&self) -> (u32, u32);
+
+    /// Lays the figure out at `size` layout pixels where it can; a figure whose size follows
+    /// its content (the atlas's fixed cells) keeps its own, which [`Figure::size`] reports.
+    fn set_size(&mut self, size: (u32, u32));
+
+    /// Lays the figure out `width` layout pixels wide at a height of its choosing; by default
+    /// its aspect ratio is kept.
+    fn fit_width(&mut self, width: u32) {
+        let (w, h) = self.size();
+        let height = (f64::from(h) * f64::from(width) / f64::from(w.max(1))).round() as u32;
+        self.set_size((width, height.max(1)));
+    }
 
     /// Draws on `root`, which covers the whole figure at `scale` device pixels per figure
     /// pixel: every length (fonts, margins, line widths, marks) is multiplied by `scale`.
@@ -113,15 +132,18 @@ pub fn downsample(rgb: &[u8], (w, h): (u32, u32), k: u32) -> Vec<u8> {
 pub enum Format {
     /// Portable Network Graphics (`.png`), rendered with the shipped font.
     Png,
-    /// Scalable Vector Graphics (`.svg`).
+    /// Scalable Vector Graphics (`.svg`), coordinates to 0.01 px, the font embedded or the
+    /// text as paths.
     Svg,
+    /// Portable Document Format (`.pdf`), the font embedded.
+    Pdf,
 }
 
 impl Format {
     /// The format of `path` from its extension (case-insensitive).
     ///
     /// # Errors
-    /// If the extension is neither `png` nor `svg`.
+    /// If the extension is not `png`, `svg` or `pdf`.
     pub fn from_path(path: &Path) -> Result<Self> {
         let ext = path
             .extension()
@@ -129,21 +151,30 @@ impl Format {
         match ext.as_deref() {
             Some("png") => Ok(Format::Png),
             Some("svg") => Ok(Format::Svg),
+            Some("pdf") => Ok(Format::Pdf),
             _ => bail!(
-                "{}: plots are written as .png or .svg (chosen by the file's extension)",
+                "{}: plots are written as .png, .svg or .pdf (chosen by the file's extension)",
                 path.display()
             ),
         }
     }
 }
 
-/// Draws `figure` into `path` (PNG or SVG by extension), atomically: nothing is left at `path`
-/// unless the whole image was written.
+/// Draws `figure` into `path` (PNG, SVG or PDF by extension) at its own size, atomically:
+/// nothing is left at `path` unless the whole image was written.
 ///
 /// # Errors
 /// An unknown extension, an unwritable directory, or a drawing error.
-pub fn save(figure: &impl Figure, path: &Path) -> Result<()> {
-    save_to(figure, &output::Destination::check(path)?)
+pub fn save<F: Figure + Clone>(figure: &F, path: &Path) -> Result<()> {
+    save_with(figure, path, &FigureOptions::default())
+}
+
+/// As [`save`], with a figure size, font size, resolution and SVG text mode.
+///
+/// # Errors
+/// As [`save`].
+pub fn save_with<F: Figure + Clone>(figure: &F, path: &Path, opts: &FigureOptions) -> Result<()> {
+    save_to(figure, &output::Destination::check(path)?, opts)
 }
 
 /// Draws `figure` into a checked destination: atomically into a regular file, or rendered
@@ -151,54 +182,116 @@ pub fn save(figure: &impl Figure, path: &Path) -> Result<()> {
 ///
 /// # Errors
 /// As [`save`].
-pub fn save_to(figure: &impl Figure, dest: &output::Destination) -> Result<()> {
+pub fn save_to<F: Figure + Clone>(
+    figure: &F,
+    dest: &output::Destination,
+    opts: &FigureOptions,
+) -> Result<()> {
     let path = dest.path();
     let format = Format::from_path(path)?;
-    register_fonts()?;
+    let bytes =
+        render(figure, format, opts).with_context(|| format!("cannot draw {}", path.display()))?;
     let temp = dest.scratch()?;
-    let size = figure.size();
-    let drawn = match format {
-        Format::Png => {
-            let k = SUPERSAMPLE;
-            let big = (size.0 * k, size.1 * k);
-            let mut rgb = vec![255u8; big.0 as usize * big.1 as usize * 3];
-            let drawn = {
-                let root = text::ShapedText::new(BitMapBackend::with_buffer(&mut rgb, big))
-                    .into_drawing_area();
-                figure
-                    .draw(&root, f64::from(k))
-                    .and_then(|()| root.present())
-                    .map_err(|e| anyhow!("{e}"))
-            };
-            drawn.and_then(|()| {
-                let small = downsample(&rgb, size, k);
-                encode_png(&temp, &small, size)
-            })
-        }
-        Format::Svg => {
-            let root = SVGBackend::new(&temp, size).into_drawing_area();
-            figure
-                .draw(&root, 1.0)
-                .and_then(|()| root.present())
-                .map_err(|e| anyhow!("{e}"))
-        }
-    };
-    drawn.with_context(|| format!("cannot draw {}", path.display()))?;
+    std::fs::write(&temp, bytes).with_context(|| format!("cannot write {}", temp.display()))?;
     dest.commit_scratch(temp)?;
     Ok(())
 }
 
-/// Writes an RGB image as PNG with the best compression (plotters' encoder uses the fastest,
-/// which makes README plots several times larger).
-fn encode_png(path: &Path, rgb: &[u8], (w, h): (u32, u32)) -> Result<()> {
-    use image::ImageEncoder;
-    use image::codecs::png::{CompressionType, FilterType, PngEncoder};
-    let file = std::fs::File::create(path)?;
-    let mut out = std::io::BufWriter::new(file);
-    PngEncoder::new_with_quality(&mut out, CompressionType::Best, FilterType::Adaptive)
-        .write_image(rgb, w, h, image::ColorType::Rgb8)?;
-    std::io::Write::flush(&mut out)?;
-    Ok(())
+/// The bytes of the file `figure` makes in `format` with `opts`.
+///
+/// # Errors
+/// A drawing or conversion error.
+pub fn render<F: Figure + Clone>(
+    figure: &F,
+    format: Format,
+    opts: &FigureOptions,
+) -> Result<Vec<u8>> {
+    register_fonts()?;
+    let layout = opts.layout();
+    let mut figure = figure.clone();
+    match layout.target {
+        options::Target::Own => {}
+        options::Target::Width(w) => figure.fit_width(w),
+        options::Target::Size(w, h) => figure.set_size((w, h)),
+    }
+    let size = figure.size();
+    let pixels = layout.pixels(size);
+    match format {
+        Format::Png => {
+            let k = SUPERSAMPLE;
+            let big = (pixels.0 * k, pixels.1 * k);
+            let mut rgb = vec![255u8; big.0 as usize * big.1 as usize * 3];
+            {
+                let root = text::ShapedText::new(BitMapBackend::with_buffer(&mut rgb, big))
+                    .into_drawing_area();
+                figure
+                    .draw(&root, layout.scale * f64::from(k))
+                    .and_then(|()| root.present())
+                    .map_err(|e| anyhow!("{e}"))?;
+            }
+            let small = downsample(&rgb, pixels, k);
+            encode_png(&small, pixels, layout.dpi)
+        }
+        Format::Svg | Format::Pdf => {
+            let scale = layout.scale * vector::SUBPIXEL;
+            let device = (
+                (f64::from(size.0) * scale).round() as u32,
+                (f64::from(size.1) * scale).round() as u32,
+            );
+            let mut svg = String::new();
+            {
+                let root = SVGBackend::with_string(&mut svg, device).into_drawing_area();
+                figure
+                    .draw(&root, scale)
+                    .and_then(|()| root.present())
+                    .map_err(|e| anyhow!("{e}"))?;
+            }
+            let extent = if opts.size.is_some() {
+                let (w, h) = layout.inches(size);
+                vector::Extent {
+                    width: format!("{w:.4}in"),
+                    height: format!("{h:.4}in"),
+                }
+            } else {
+                let css = options::CSS_DPI / layout.dpi;
+                vector::Extent {
+                    width: format!("{:.2}", f64::from(pixels.0) * css),
+                    height: format!("{:.2}", f64::from(pixels.1) * css),
+                }
+            };
+            let doc = vector::document(&svg, device, &extent)?;
+            if format == Format::Svg {
+                Ok(vector::finish_svg(&doc, opts.svg_text)?.into_bytes())
+            } else {
+                vector::pdf(&doc)
+            }
+        }
+    }
+}
+
+/// Encodes an RGB image as PNG with the best compression (plotters' encoder uses the
+/// fastest, which makes README plots several times larger) and its resolution in a `pHYs`
+/// chunk.
+fn encode_png(rgb: &[u8], (w, h): (u32, u32), dpi: f64) -> Result<Vec<u8>> {
+    let mut out = Vec::new();
+    {
+        let mut encoder = png::Encoder::new(&mut out, w, h);
+        encoder.set_color(png::ColorType::Rgb);
+        encoder.set_depth(png::BitDepth::Eight);
+        encoder.set_compression(png::Compression::Best);
+        encoder.set_filter(png::FilterType::Paeth);
+        encoder.set_adaptive_filter(png::AdaptiveFilterType::Adaptive);
+        let per_metre = (dpi / 0.0254).round() as u32;
+        encoder.set_pixel_dims(Some(png::PixelDimensions {
+            xppu: per_metre,
+            yppu: per_metre,
+            unit: png::Unit::Meter,
+        }));
+        let mut writer = encoder.write_header()?;
+        writer.write_image_data(rgb)?;
+        writer.finish()?;
+    }
+    Ok(out)
 }
 
 /// A text style of the shipped font at `size` pixels.
@@ -253,6 +346,25 @@ mod tests {
     }
 
     #[test]
+    fn a_single_column_png_is_1020_pixels_wide_at_300_dpi() {
+        let opts = FigureOptions {
+            size: Some(options::Size::parse("single").unwrap()),
+            ..FigureOptions::default()
+        };
+        let bytes = render(&figure(), Format::Png, &opts).unwrap();
+        let reader = png::Decoder::new(std::io::Cursor::new(bytes))
+            .read_info()
+            .unwrap();
+        let info = reader.info();
+        // 3.4 in at 300 dpi, to the rounding of the layout to whole pixels.
+        assert!((i64::from(info.width) - 1020).abs() <= 3, "{}", info.width);
+        let dims = info.pixel_dims.unwrap();
+        assert_eq!(dims.unit, png::Unit::Meter);
+        // 300 dots per inch is 11811 per metre.
+        assert_eq!(dims.xppu, 11811);
+    }
+
+    #[test]
     fn downsampling_averages_blocks() {
         // 2 × 1 image at k = 2: a black block and a half-white block.
         let mut big = vec![0u8; 4 * 2 * 3];
@@ -268,7 +380,7 @@ mod tests {
     fn unknown_extensions_are_refused_before_anything_is_written() {
         let dir = tempfile::tempdir().unwrap();
         let err = save(&figure(), &dir.path().join("plot.jpg")).unwrap_err();
-        assert!(err.to_string().contains(".png or .svg"), "{err}");
+        assert!(err.to_string().contains(".png, .svg or .pdf"), "{err}");
         assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
     }
 }

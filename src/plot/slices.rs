@@ -1,7 +1,7 @@
 //! Slices of a map: the value against the x parameter along a few rows of the grid, as line
 //! series in one panel ([`super::xy`]).
 
-use super::xy::{Panel, Scale, Series, StackedFigure};
+use super::xy::{Mark, Panel, Scale, Series, StackedFigure};
 
 /// One row of the grid: its label (`alpha0 = 0.5 rad`) and its `(x, value)` points; points
 /// without a value (failed) are left out.
@@ -29,6 +29,20 @@ pub fn pick_rows(n: usize, k: usize) -> Vec<usize> {
     rows
 }
 
+/// Series with at most this many points get a mark at each, so a few computed points do not
+/// pass for a continuous curve.
+pub const SPARSE: usize = 40;
+
+/// A line series, marked at its points when it has at most [`SPARSE`] of them.
+#[must_use]
+pub fn sparse_marked(label: String, points: Vec<(f64, f64)>) -> Series {
+    if points.len() <= SPARSE {
+        Series::marked(label, points, Mark::LineAndPoints)
+    } else {
+        Series::line(label, points)
+    }
+}
+
 /// The figure: `title` over one panel of the slices.
 #[must_use]
 pub fn figure(
@@ -49,7 +63,7 @@ pub fn figure(
             .iter()
             .filter_map(|&(x, v)| v.filter(|v| v.is_finite()).map(|v| (x, v)))
             .collect();
-        panel = panel.with_series(Series::line(s.label.clone(), points));
+        panel = panel.with_series(sparse_marked(s.label.clone(), points));
     }
     StackedFigure {
         title,
@@ -90,5 +104,9 @@ mod tests {
             }],
         );
         assert_eq!(f.panels[0].series[0].points, vec![(0.0, 1.0), (3.0, 2.0)]);
+        // Two computed points are marked, not drawn as a bare line.
+        assert_eq!(f.panels[0].series[0].mark, Mark::LineAndPoints);
+        let dense = sparse_marked("d".into(), vec![(0.0, 0.0); SPARSE + 1]);
+        assert_eq!(dense.mark, Mark::Line);
     }
 }

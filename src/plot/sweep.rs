@@ -8,15 +8,8 @@ use tumble_scenarios::{Guide, StepControl};
 use tumble_studies::sweep::{Metric, PointRow, Sampling, Status, SweepDefinition};
 
 use crate::plot;
-
-/// The label of an axis: `omega0 (rad/s)`.
-pub(crate) fn axis_label(name: &str, unit: &str) -> String {
-    if unit.is_empty() {
-        name.to_string()
-    } else {
-        format!("{name} ({unit})")
-    }
-}
+use crate::plot::labels;
+use tumble_scenarios::display::symbol;
 
 fn metric_label(m: &Metric) -> String {
     if m.unit().is_empty() {
@@ -47,40 +40,91 @@ pub(crate) fn plot_stem(m: &Metric) -> String {
 
 /// The fixed parameters, for subtitles.
 fn fixed_parameters(def: &SweepDefinition) -> String {
-    def.params
-        .iter()
-        .filter(|(n, _)| !def.axes.iter().any(|a| a.parameter == *n))
-        .map(|(n, v)| format!("{n} = {}", round_for_label(v)))
-        .collect::<Vec<_>>()
-        .join(", ")
+    labels::parameters(
+        def.params
+            .iter()
+            .filter(|(n, _)| !def.axes.iter().any(|a| a.parameter == *n)),
+    )
 }
 
-/// A value with at most six significant digits, for labels.
-pub(crate) fn round_for_label(v: f64) -> String {
-    let s = format!("{v:.6}");
-    let s = s.trim_end_matches('0').trim_end_matches('.');
-    if s.len() > 10 {
-        format!("{v:.4e}")
-    } else {
-        s.to_string()
+/// What to draw of a sweep: which of its metrics, and along how many rows of the grid.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct Choice {
+    /// Index into the sweep's metrics.
+    pub metric: usize,
+    /// Most slices (rows of the grid) to draw.
+    pub slices: usize,
+    /// Colour the map on a base-10 logarithmic scale.
+    pub log_colour: bool,
+}
+
+impl Default for Choice {
+    fn default() -> Self {
+        Choice {
+            metric: 0,
+            slices: 5,
+            log_colour: false,
+        }
     }
 }
 
-/// Draws the map and slices of a complete grid sweep; returns the file names written.
+/// The figures of a complete grid sweep: the map (two axes with increasing grid values) and
+/// the slices, with the files' stem.
+pub(crate) struct Figures {
+    /// `tilt`, or the metric's name made safe for a file name.
+    pub stem: String,
+    /// The map, for a two-axis grid.
+    pub map: Option<plot::heatmap::Heatmap>,
+    /// The metric against the first axis.
+    pub slices: plot::xy::StackedFigure,
+}
+
+/// Draws the map and slices of a complete grid sweep with `opts`; returns the file names
+/// written.
 pub(crate) fn draw_plots(
     def: &SweepDefinition,
     dir: &Path,
     rows: &[PointRow],
+    opts: &plot::FigureOptions,
 ) -> Result<Vec<String>> {
-    let Some(metric) = def.metrics.first() else {
+    let Some(figures) = figures(def, rows, &Choice::default()) else {
         return Ok(Vec::new());
     };
+    let mut written = Vec::new();
+    for ext in ["png", "svg"] {
+        if let Some(map) = &figures.map {
+            let name = format!("{}-map.{ext}", figures.stem);
+            plot::save_with(map, &dir.join(&name), opts)?;
+            written.push(name);
+        }
+    }
+    for ext in ["png", "svg"] {
+        let name = format!("{}-slices.{ext}", figures.stem);
+        plot::save_with(&figures.slices, &dir.join(&name), opts)?;
+        written.push(name);
+    }
+    Ok(written)
+}
+
+/// The figures of metric `choice.metric` of a sweep over a grid of one or two axes; `None`
+/// for random sampling, more than two axes or a metric the sweep does not have.
+pub(crate) fn figures(
+    def: &SweepDefinition,
+    rows: &[PointRow],
+    choice: &Choice,
+) -> Option<Figures> {
+    let k = choice.metric;
+    let metric = def.metrics.get(k)?;
     if def.sampling != Sampling::Grid || def.axes.len() > 2 {
-        return Ok(Vec::new());
+        return None;
     }
     let info = def.scene.info();
     let stem = plot_stem(metric);
-    let value = |row: &PointRow| (row.status == Status::Ok).then(|| row.metrics[0]).flatten();
+    let value = |row: &PointRow| {
+        (row.status == Status::Ok)
+            .then(|| row.metrics.get(k).copied().flatten())
+            .flatten()
+    };
     let x_axis = &def.axes[0];
     let xs = x_axis.grid_values();
     let increasing = |v: &[f64]| v.windows(2).all(|w| w[0] < w[1]);
@@ -91,15 +135,14 @@ pub(crate) fn draw_plots(
         step_words(def.plan.step),
         fixed_parameters(def)
     );
-    let mut written = Vec::new();
-    let x_label = axis_label(x_axis.parameter, x_axis.unit);
+    let x_label = labels::axis(x_axis.parameter, x_axis.unit);
     if def.axes.len() == 1 {
         // The rows' own x values: a refined sweep has some points of the grid only.
         let slice = plot::slices::Slice {
             label: metric.name().to_string(),
             points: rows.iter().map(|r| (r.values[0], value(r))).collect(),
         };
-        let fig = plot::slices::figure(
+        let slices = plot::slices::figure(
             format!("{} {horizon}", metric.description()),
             subtitle,
             &x_label,
@@ -107,58 +150,53 @@ pub(crate) fn draw_plots(
             x_axis.is_log(),
             &[slice],
         );
-        for ext in ["png", "svg"] {
-            let name = format!("{stem}-slices.{ext}");
-            plot::save(&fig, &dir.join(&name))?;
-            written.push(name);
-        }
-        return Ok(written);
+        return Some(Figures {
+            stem,
+            map: None,
+            slices,
+        });
     }
     let y_axis = &def.axes[1];
     let ys = y_axis.grid_values();
     let (nx, ny) = (xs.len(), ys.len());
     let grid = painted_grid(def, rows, nx, ny, &value);
-    if increasing(&xs) && increasing(&ys) {
+    let map = (increasing(&xs) && increasing(&ys)).then(|| {
         let (markers, curves) = guides(def, &xs);
-        let map = plot::heatmap::Heatmap {
+        plot::heatmap::Heatmap {
             title: format!("{}: {} {horizon}", info.name, metric.description()),
             subtitle: subtitle.clone(),
             x_label: x_label.clone(),
-            y_label: axis_label(y_axis.parameter, y_axis.unit),
+            y_label: labels::axis(y_axis.parameter, y_axis.unit),
             value_label: metric_label(metric),
             xs: xs.clone(),
             ys: ys.clone(),
-            values: grid.clone(),
+            values: grid,
             range: None,
             markers,
             curves,
             x_log: x_axis.is_log(),
             y_log: y_axis.is_log(),
+            value_log: choice.log_colour,
             size: (1000, 720),
-        };
-        for ext in ["png", "svg"] {
-            let name = format!("{stem}-map.{ext}");
-            plot::save(&map, &dir.join(&name))?;
-            written.push(name);
         }
-    }
+    });
     // A refined map's slices run along rows of its coarse grid (computed across the whole
     // range) through the points computed on them.
     let stride = def.refine.as_ref().map_or(1, |r| 1usize << r.levels);
     let candidates: Vec<usize> = (0..ny)
         .filter(|&j| j % stride == 0 || j + 1 == ny)
         .collect();
-    let slices: Vec<plot::slices::Slice> = plot::slices::pick_rows(candidates.len(), 5)
+    let slices: Vec<plot::slices::Slice> = plot::slices::pick_rows(candidates.len(), choice.slices)
         .into_iter()
         .map(|k| candidates[k])
         .map(|j| plot::slices::Slice {
             label: format!(
                 "{} = {}{}",
-                y_axis.parameter,
+                symbol(y_axis.parameter),
                 if y_axis.is_log() {
                     plot::heatmap::log_labels(&ys[j].log10())
                 } else {
-                    round_for_label(ys[j])
+                    labels::value(ys[j])
                 },
                 if y_axis.unit.is_empty() {
                     String::new()
@@ -173,12 +211,12 @@ pub(crate) fn draw_plots(
                 .collect(),
         })
         .collect();
-    let fig = plot::slices::figure(
+    let slices = plot::slices::figure(
         format!(
             "{}: {} {horizon}, against {}",
             info.name,
             metric.description(),
-            x_axis.parameter
+            symbol(x_axis.parameter)
         ),
         subtitle,
         &x_label,
@@ -186,12 +224,7 @@ pub(crate) fn draw_plots(
         x_axis.is_log(),
         &slices,
     );
-    for ext in ["png", "svg"] {
-        let name = format!("{stem}-slices.{ext}");
-        plot::save(&fig, &dir.join(&name))?;
-        written.push(name);
-    }
-    Ok(written)
+    Some(Figures { stem, map, slices })
 }
 
 /// The map's cells, `values[j][i]` at `(xs[i], ys[j])` (points are numbered with the last

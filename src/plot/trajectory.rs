@@ -14,6 +14,8 @@
 //! `qz` components of a unit quaternion; a rate `<name>_dot` has the unit of `<name>` per
 //! second, `omega_x` (any `omega_*`) is an angular velocity in rad/s.
 
+use tumble_scenarios::display::symbol;
+
 use super::xy::{Panel, Scale, Series, StackedFigure};
 
 /// What a coordinate measures: a kind (`angle`) and its SI unit (`rad`; empty if unknown).
@@ -140,11 +142,13 @@ pub fn figure(title: impl Into<String>, run: &Run<'_>) -> StackedFigure {
     for (label, names) in &groups {
         let mut panel = Panel::new(TIME, label.as_str());
         for name in names {
-            if let Some(s) = run.series(name, name) {
+            if let Some(s) = run.series(name, &symbol(name)) {
                 panel = panel.with_series(s);
             }
         }
-        panels.push(panel);
+        if !panel.series.is_empty() {
+            panels.push(panel);
+        }
     }
     if run
         .column("tilt")
@@ -160,7 +164,7 @@ pub fn figure(title: impl Into<String>, run: &Run<'_>) -> StackedFigure {
                 .with_series(s),
         );
     }
-    if let Some(s) = run.series("exact_err", "exact_err") {
+    if let Some(s) = run.series("exact_err", &symbol("exact_err")) {
         panels.push(
             Panel::new(TIME, "error against the exact solution")
                 .with_y_scale(Scale::Log)
@@ -173,6 +177,43 @@ pub fn figure(title: impl Into<String>, run: &Run<'_>) -> StackedFigure {
         panels,
         width: 1100,
         panel_height: 300,
+    }
+}
+
+/// The `simulate --plot` figure of a run of scene `info` (`columns` as in its CSV, `values`
+/// column by column) with `integrator` at `step` (in words) and `params` in the scene's
+/// order. `tumble plot` redraws a saved CSV through this same function.
+#[must_use]
+pub fn simulation(
+    info: &tumble_scenarios::SceneInfo,
+    integrator: &str,
+    step: &str,
+    params: impl Iterator<Item = (&'static str, f64)>,
+    columns: &[String],
+    values: &[Vec<f64>],
+) -> StackedFigure {
+    let rates = rate_columns(info);
+    let run = Run {
+        columns,
+        values,
+        coordinates: info.coordinates,
+        rates: &rates,
+    };
+    let mut figure = figure(format!("{} — {integrator}, {step}", info.name), &run);
+    figure.subtitle = super::labels::parameters(params);
+    figure
+}
+
+/// The rate columns of scene `info`: its named rates, or its coordinates with `_dot`.
+#[must_use]
+pub fn rate_columns(info: &tumble_scenarios::SceneInfo) -> Vec<String> {
+    if info.rate_names.is_empty() {
+        info.coordinates
+            .iter()
+            .map(|c| format!("{c}_dot"))
+            .collect()
+    } else {
+        info.rate_names.iter().map(|r| (*r).to_string()).collect()
     }
 }
 
@@ -273,7 +314,7 @@ mod tests {
             .iter()
             .map(|s| s.label.as_str())
             .collect();
-        assert_eq!(names, ["phi", "alpha"]);
+        assert_eq!(names, ["φ", "α"]);
         assert_eq!(f.panels[5].y_scale, Scale::Log);
         assert!(f.panels.iter().all(|p| p.x_label == "time t (s)"));
         let names: Vec<&str> = f.panels[2]
@@ -281,7 +322,7 @@ mod tests {
             .iter()
             .map(|s| s.label.as_str())
             .collect();
-        assert_eq!(names, ["phi_dot", "alpha_dot"]);
+        assert_eq!(names, ["φ\u{307}", "α\u{307}"]);
         // A tilt that stays 0 (a vertical hoop) gets no panel.
         values[9] = vec![0.0, 0.0];
         let run = Run {

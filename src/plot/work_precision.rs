@@ -1,14 +1,70 @@
 //! Work–precision figures: error against wall time and against right-hand-side evaluations
 //! (log–log, one curve per integrator), and the long-run relative energy error against time.
 
-use super::xy::{LegendCorner, Mark, Panel, Scale, Series, StackedFigure};
+use super::xy::{Mark, Panel, Scale, Series, SeriesLook, StackedFigure};
 
 /// One integrator's curve: `(wall time s, evaluations, error)` per rung.
 pub struct Curve {
+    /// The integrator's registry name: its family sets the curve's colour.
+    pub integrator: String,
     /// Legend entry (integrator and order).
     pub label: String,
     /// `(seconds, evaluations, error)` from coarse to fine.
     pub rungs: Vec<(f64, f64, f64)>,
+}
+
+/// What a work–precision figure says about its study, beside the curves.
+pub struct Study<'a> {
+    /// Scene name.
+    pub scene: &'a str,
+    /// Horizon (s).
+    pub t_end: f64,
+    /// The parameters in words (`M = 1, a = 0.4`).
+    pub parameters: String,
+    /// The reference method, the method that cross-checked it, and their agreement.
+    pub reference: (&'a str, &'a str, f64),
+}
+
+/// A curve's legend entry: the integrator and its order (`rk4 (4)`, `exact (exact)`).
+#[must_use]
+pub fn curve_label(integrator: &str, order: Option<u32>) -> String {
+    match order {
+        Some(p) => format!("{integrator} ({p})"),
+        None => format!("{integrator} (exact)"),
+    }
+}
+
+/// The `work-precision` figure of `study`: [`figure`] with its title and subtitle. The
+/// command and `tumble plot` both draw through this.
+#[must_use]
+pub fn study_figure(study: &Study<'_>, curves: &[Curve]) -> StackedFigure {
+    let (method, check, agreement) = study.reference;
+    figure(
+        format!(
+            "{}: error at t = {} s against cost",
+            study.scene, study.t_end
+        ),
+        format!(
+            "{}; reference: {method} (cross-check {check}: {agreement:.1e})",
+            study.parameters
+        ),
+        curves,
+    )
+}
+
+/// The palette index of the family of `integrator` (one colour per family; methods of a
+/// family differ by mark and dash). Unknown names share the last colour.
+fn family_colour(integrator: &str) -> usize {
+    use tumble_integrators::registry::{Family, find};
+    match find(integrator).map(|m| m.family) {
+        Ok(Family::ExplicitRungeKutta) => 0,
+        Ok(Family::GaussLegendre) => 1,
+        Ok(Family::Splitting) => 2,
+        Ok(Family::Composition) => 3,
+        Ok(Family::LieGroup) => 4,
+        Ok(Family::SymplecticPartitioned) => 5,
+        _ => 6,
+    }
 }
 
 /// Error at the final time against wall time (top) and against evaluations (bottom).
@@ -16,10 +72,10 @@ pub fn figure(title: String, subtitle: String, curves: &[Curve]) -> StackedFigur
     let panel = |x_label: &str, pick: fn(&(f64, f64, f64)) -> f64| {
         let mut p = Panel::new(x_label, "error at the final time")
             .with_x_scale(Scale::Log)
-            .with_y_scale(Scale::Log)
-            .with_legend(LegendCorner::LowerLeft);
+            .with_y_scale(Scale::Log);
+        let mut seen: Vec<usize> = Vec::new();
         for c in curves {
-            p = p.with_series(Series::marked(
+            let mut series = Series::marked(
                 c.label.clone(),
                 c.rungs.iter().map(|r| (pick(r), r.2)).collect(),
                 if c.rungs.len() == 1 {
@@ -27,7 +83,14 @@ pub fn figure(title: String, subtitle: String, curves: &[Curve]) -> StackedFigur
                 } else {
                     Mark::LineAndPoints
                 },
-            ));
+            );
+            let colour = family_colour(&c.integrator);
+            series.look = Some(SeriesLook {
+                colour,
+                variant: seen.iter().filter(|&&f| f == colour).count(),
+            });
+            seen.push(colour);
+            p = p.with_series(series);
         }
         p
     };
@@ -37,7 +100,7 @@ pub fn figure(title: String, subtitle: String, curves: &[Curve]) -> StackedFigur
         panels: vec![
             panel("wall time per run (s)", |r| r.0),
             panel(
-                "right-hand-side evaluations (steps for splitting methods)",
+                "right-hand-side evaluations (steps for a method without one)",
                 |r| r.1,
             ),
         ],
@@ -53,8 +116,7 @@ pub fn long_figure(title: String, subtitle: String, lines: Vec<Series>) -> Stack
         "relative energy error |E − E₀|/|E₀| (maximum per log-time bin)",
     )
     .with_x_scale(Scale::Log)
-    .with_y_scale(Scale::Log)
-    .with_legend(LegendCorner::UpperLeft);
+    .with_y_scale(Scale::Log);
     for s in lines {
         panel = panel.with_series(s);
     }

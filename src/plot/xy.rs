@@ -12,12 +12,12 @@
 use std::ops::Range;
 
 use plotters::coord::Shift;
-use plotters::coord::ranged1d::{
-    AsRangedCoord, DefaultFormatting, KeyPointHint, Ranged, ValueFormatter,
-};
+use plotters::coord::ranged1d::{AsRangedCoord, Ranged, ValueFormatter};
 use plotters::prelude::*;
 
-use super::{DrawResult, Figure, colour, font};
+use super::log_axis::{Log10Axis, log_label};
+use super::title::Band;
+use super::{DrawResult, Figure, colour, font, legend};
 
 /// How an axis maps values.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -56,6 +56,19 @@ pub struct Series {
     pub points: Vec<(f64, f64)>,
     /// Lines, points or both.
     pub mark: Mark,
+    /// A colour and mark of its own; `None`: by its place in the panel.
+    pub look: Option<SeriesLook>,
+}
+
+/// A series' own colour (palette index: a group such as a method family) and variant within
+/// the group (marker `variant % 3`: circle, square, triangle; line `variant / 3 % 3`: solid,
+/// dashed, dotted).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct SeriesLook {
+    /// Palette index.
+    pub colour: usize,
+    /// Variant within the colour.
+    pub variant: usize,
 }
 
 impl Series {
@@ -66,6 +79,7 @@ impl Series {
             label: label.into(),
             points,
             mark: Mark::Line,
+            look: None,
         }
     }
 
@@ -77,6 +91,7 @@ impl Series {
             label: label.into(),
             points,
             mark,
+            look: None,
         }
     }
 }
@@ -92,22 +107,9 @@ pub struct Panel {
     pub x_scale: Scale,
     /// y-axis scale.
     pub y_scale: Scale,
-    /// The series, drawn in order with the palette's colours.
+    /// The series, drawn in order with the palette's colours; the legend is placed where it
+    /// covers none of them ([`super::legend`]).
     pub series: Vec<Series>,
-    /// Where the legend goes: the corner the data leave empty.
-    pub legend: LegendCorner,
-}
-
-/// A corner of the plot area for the legend.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum LegendCorner {
-    /// Upper right (the default).
-    #[default]
-    UpperRight,
-    /// Upper left (energy errors that grow with time).
-    UpperLeft,
-    /// Lower left (work–precision diagrams: cheap and accurate is the impossible corner).
-    LowerLeft,
 }
 
 impl Panel {
@@ -120,15 +122,7 @@ impl Panel {
             x_scale: Scale::Linear,
             y_scale: Scale::Linear,
             series: Vec::new(),
-            legend: LegendCorner::UpperRight,
         }
-    }
-
-    /// With the legend in `corner`.
-    #[must_use]
-    pub fn with_legend(mut self, corner: LegendCorner) -> Self {
-        self.legend = corner;
-        self
     }
 
     /// With the given x-axis scale.
@@ -178,17 +172,12 @@ pub struct StackedFigure {
     pub panel_height: u32,
 }
 
-/// Height of the title band in pixels, without and with a subtitle.
-const TITLE_HEIGHT: u32 = 44;
-const TITLE_AND_SUBTITLE_HEIGHT: u32 = 68;
+/// The lowest a panel is laid out when the figure chooses its height (layout pixels).
+const MIN_PANEL: u32 = 150;
 
 impl StackedFigure {
-    fn title_height(&self) -> u32 {
-        if self.subtitle.is_empty() {
-            TITLE_HEIGHT
-        } else {
-            TITLE_AND_SUBTITLE_HEIGHT
-        }
+    fn band(&self) -> Band {
+        Band::new(&self.title, &self.subtitle, self.width)
     }
 }
 
@@ -197,9 +186,24 @@ impl Figure for StackedFigure {
         let n = u32::try_from(self.panels.len().max(1)).unwrap_or(u32::MAX);
         (
             self.width,
-            self.title_height()
+            self.band()
+                .height()
                 .saturating_add(n.saturating_mul(self.panel_height)),
         )
+    }
+
+    /// The width as given; the panels share the height left under the title.
+    fn set_size(&mut self, (width, height): (u32, u32)) {
+        let n = u32::try_from(self.panels.len().max(1)).unwrap_or(u32::MAX);
+        self.width = width;
+        self.panel_height = (height.saturating_sub(self.band().height()) / n).max(1);
+    }
+
+    /// The width as given; each panel 0.4 times as high as the figure is wide, at least
+    /// [`MIN_PANEL`] and at most as high as it was.
+    fn fit_width(&mut self, width: u32) {
+        self.width = width;
+        self.panel_height = (width * 2 / 5).clamp(MIN_PANEL, self.panel_height.max(MIN_PANEL));
     }
 
     fn draw<DB: DrawingBackend>(
@@ -209,25 +213,24 @@ impl Figure for StackedFigure {
     ) -> DrawResult<DB> {
         let px = |v: u32| px(v, scale);
         root.fill(&WHITE)?;
-        let (title, body) = root.split_vertically(px(self.title_height()));
-        title.draw(&Text::new(
-            self.title.clone(),
-            (px(16) as i32, px(12) as i32),
-            font(22.0 * scale).color(&BLACK),
-        ))?;
-        if !self.subtitle.is_empty() {
-            title.draw(&Text::new(
-                self.subtitle.clone(),
-                (px(16) as i32, px(42) as i32),
-                font(15.0 * scale).color(&RGBColor(64, 64, 64)),
-            ))?;
-        }
+        let band = self.band();
+        let (title, body) = root.split_vertically(px(band.height()));
+        band.draw(&title, scale)?;
         if self.panels.is_empty() {
             return Ok(());
         }
         let areas = body.split_evenly((self.panels.len(), 1));
-        for (panel, area) in self.panels.iter().zip(&areas) {
-            draw_panel(area, panel, self.width, scale)?;
+        let last = self.panels.len() - 1;
+        // Panels above one with the same x axis leave its label to the bottom panel, and
+        // every panel takes the right margin the widest outside legend needs, so that the
+        // plot areas line up.
+        let shared = |k: usize| k < last && self.panels[last].x_label == self.panels[k].x_label;
+        let mut right = 0;
+        for (k, (panel, area)) in self.panels.iter().zip(&areas).enumerate() {
+            right = right.max(draw_panel(area, panel, self.width, scale, shared(k), None)?);
+        }
+        for (k, (panel, area)) in self.panels.iter().zip(&areas).enumerate() {
+            draw_panel(area, panel, self.width, scale, shared(k), Some(right))?;
         }
         Ok(())
     }
@@ -306,76 +309,6 @@ pub fn decimate_min_max(points: &[(f64, f64)], buckets: usize) -> Vec<(f64, f64)
     out
 }
 
-/// A base-10 logarithmic axis over `[lo, hi]`, `0 < lo < hi`.
-///
-/// Written here rather than taken from plotters' `log_scale()`, whose tick search drops every
-/// tick below `f64::EPSILON` (it takes them for the zero point) and can lose an end decade to
-/// rounding: relative energy errors live at 1e-16. Bold ticks are whole decades (every k-th
-/// when there are too many), light ones add 2…9 × each decade when they fit.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Log10Axis {
-    lo: f64,
-    hi: f64,
-}
-
-impl Log10Axis {
-    /// The axis over `range`; `None` unless `0 < start < end` and both are finite.
-    #[must_use]
-    pub fn new(range: Range<f64>) -> Option<Self> {
-        (range.start > 0.0 && range.end > range.start && range.end.is_finite()).then_some(
-            Log10Axis {
-                lo: range.start,
-                hi: range.end,
-            },
-        )
-    }
-}
-
-impl Ranged for Log10Axis {
-    type FormatOption = DefaultFormatting;
-    type ValueType = f64;
-
-    fn map(&self, value: &f64, limit: (i32, i32)) -> i32 {
-        let (a, b) = (self.lo.log10(), self.hi.log10());
-        // Non-positive values map far below the axis (and are clipped by the plot area).
-        let f = if *value > 0.0 {
-            ((value.log10() - a) / (b - a)).clamp(-10.0, 11.0)
-        } else {
-            -10.0
-        };
-        limit.0 + (f * f64::from(limit.1 - limit.0)).round() as i32
-    }
-
-    fn key_points<H: KeyPointHint>(&self, hint: H) -> Vec<f64> {
-        let max = hint.max_num_points().max(1);
-        let first = (self.lo.log10() - 1e-9).ceil() as i32;
-        let last = (self.hi.log10() + 1e-9).floor() as i32;
-        let decade = |k: i32| format!("1e{k}").parse::<f64>().unwrap_or(f64::NAN);
-        let count = usize::try_from(last - first + 1).unwrap_or(0);
-        let stride = count.div_ceil(max).max(1);
-        let mut points: Vec<f64> = (first..=last).step_by(stride).map(decade).collect();
-        if hint.weight().allow_light_points() && stride == 1 {
-            let minor: Vec<f64> = (first - 1..=last)
-                .flat_map(|k| (2..=9).map(move |m| f64::from(m) * decade(k)))
-                .filter(|v| (self.lo..=self.hi).contains(v))
-                .collect();
-            if points.len() + minor.len() <= max {
-                points.extend(minor);
-            }
-        }
-        points
-    }
-
-    fn range(&self) -> Range<f64> {
-        self.lo..self.hi
-    }
-}
-
-/// `1e-10` style labels for logarithmic axes.
-fn log_label(v: &f64) -> String {
-    format!("{v:.0e}")
-}
-
 /// Labels for a linear axis over `range` with plotters' ticks (at most `labels` of them): as
 /// many decimals as the tick spacing needs and no more, the same for every tick, scientific
 /// notation for values of magnitude `≥ 1e5` or `< 1e-3`, and no `-0`.
@@ -414,7 +347,9 @@ fn draw_panel<DB: DrawingBackend>(
     panel: &Panel,
     width: u32,
     scale: f64,
-) -> DrawResult<DB> {
+    shared_x: bool,
+    right: Option<u32>,
+) -> PanelResult<DB> {
     let x = axis_range(panel.visible().map(|p| p.0), panel.x_scale);
     let y = axis_range(panel.visible().map(|p| p.1), panel.y_scale);
     let (x, y, empty) = match (x, y) {
@@ -435,9 +370,12 @@ fn draw_panel<DB: DrawingBackend>(
         note,
         buckets: width as usize,
         scale,
+        shared_x,
+        right,
+        measure: right.is_none(),
     };
     // A log axis range from `axis_range` is always positive; the fallback never runs.
-    let log = |r: Range<f64>| Log10Axis::new(r).unwrap_or(Log10Axis { lo: 1e-16, hi: 1.0 });
+    let log = |r: Range<f64>| Log10Axis::new(r).unwrap_or_else(Log10Axis::fallback);
     let x_linear = linear_labels(&x, X_LABELS);
     let y_linear = linear_labels(&y, Y_LABELS);
     match (panel.x_scale, panel.y_scale) {
@@ -462,6 +400,12 @@ struct Look<'a> {
     buckets: usize,
     /// Device pixels per figure pixel.
     scale: f64,
+    /// The x axis's label is the bottom panel's: tick labels only.
+    shared_x: bool,
+    /// The right margin (device pixels), the same for every panel of a figure.
+    right: Option<u32>,
+    /// Only find the right margin the panel needs; draw nothing.
+    measure: bool,
 }
 
 /// Draws one panel on coordinates `x`, `y` (linear ranges or their `log_scale()`).
@@ -473,39 +417,97 @@ fn chart<DB, X, Y>(
     x_format: &dyn Fn(&f64) -> String,
     y_format: &dyn Fn(&f64) -> String,
     look: &Look<'_>,
-) -> DrawResult<DB>
+) -> PanelResult<DB>
 where
     DB: DrawingBackend,
-    X: AsRangedCoord<Value = f64>,
-    Y: AsRangedCoord<Value = f64>,
+    X: AsRangedCoord<Value = f64> + Clone,
+    Y: AsRangedCoord<Value = f64> + Clone,
     X::CoordDescType: ValueFormatter<f64>,
     Y::CoordDescType: ValueFormatter<f64>,
 {
     let s = look.scale;
     let px = |v: u32| px(v, s);
     let line_width = px(1).max(1);
-    let mut chart = ChartBuilder::on(area)
-        .margin_left(px(12))
-        .margin_right(px(24))
-        .margin_top(px(8))
-        .margin_bottom(px(4))
-        .x_label_area_size(px(44))
-        .y_label_area_size(px(84))
-        .build_cartesian_2d(x, y)?;
+    let build = |right: u32| {
+        ChartBuilder::on(area)
+            .margin_left(px(12))
+            .margin_right(right)
+            .margin_top(px(8))
+            .margin_bottom(px(4))
+            .x_label_area_size(px(if look.shared_x { 26 } else { 44 }))
+            .y_label_area_size(px(84))
+            .build_cartesian_2d(x.clone(), y.clone())
+    };
+    let base_right = px(24);
+    let mut right = look.right.unwrap_or(base_right).max(base_right);
+    let mut chart = build(right)?;
+    let prepared: Vec<Prepared> = panel
+        .series
+        .iter()
+        .enumerate()
+        .map(|(i, series)| prepare(panel, i, series, look.buckets))
+        .collect();
+    let labels: Vec<&str> = panel.series.iter().map(|s| s.label.as_str()).collect();
+    let legend_size = legend::size(area, &labels, s);
+    let plot_rect = |chart: &ChartContext<'_, DB, _>| {
+        let (xr, yr) = chart.plotting_area().get_pixel_range();
+        legend::Rect {
+            x0: f64::from(xr.start),
+            y0: f64::from(yr.start),
+            x1: f64::from(xr.end),
+            y1: f64::from(yr.end),
+        }
+    };
+    let to_pixels = |chart: &ChartContext<'_, DB, _>, points: &[(f64, f64)]| {
+        points
+            .iter()
+            .map(|p| {
+                let (a, b) = chart.backend_coord(p);
+                (f64::from(a), f64::from(b))
+            })
+            .collect::<Vec<_>>()
+    };
+    let drawn = legend::Drawn {
+        lines: prepared
+            .iter()
+            .map(|p| to_pixels(&chart, &p.line))
+            .collect(),
+        marks: prepared
+            .iter()
+            .flat_map(|p| to_pixels(&chart, &p.marks))
+            .collect(),
+        reach: 5.0 * s,
+    };
+    let mut placement = legend::Placement::Outside;
+    if !panel.series.is_empty() && look.note.is_none() {
+        placement = legend::place(&plot_rect(&chart), legend_size, 6.0 * s, &drawn);
+        let need = base_right + legend_size.0.round() as u32 + px(8);
+        if placement == legend::Placement::Outside && right < need {
+            right = need;
+            chart = build(right)?;
+        }
+    }
+    if look.measure {
+        return Ok(right);
+    }
     {
         let mut mesh = chart.configure_mesh();
-        mesh.x_desc(panel.x_label.as_str())
-            .y_desc(panel.y_label.as_str())
-            .axis_desc_style(font(17.0 * s))
-            .label_style(font(14.0 * s))
-            .set_all_tick_mark_size(px(5))
-            .axis_style(BLACK.stroke_width(line_width))
-            .light_line_style(RGBColor(238, 238, 238).stroke_width(line_width))
-            .bold_line_style(RGBColor(212, 212, 212).stroke_width(line_width))
-            .x_labels(X_LABELS)
-            .y_labels(Y_LABELS)
-            .x_label_formatter(x_format)
-            .y_label_formatter(y_format);
+        mesh.x_desc(if look.shared_x {
+            ""
+        } else {
+            panel.x_label.as_str()
+        })
+        .y_desc(panel.y_label.as_str())
+        .axis_desc_style(font(17.0 * s))
+        .label_style(font(14.0 * s))
+        .set_all_tick_mark_size(px(5))
+        .axis_style(BLACK.stroke_width(line_width))
+        .light_line_style(RGBColor(238, 238, 238).stroke_width(line_width))
+        .bold_line_style(RGBColor(212, 212, 212).stroke_width(line_width))
+        .x_labels(X_LABELS)
+        .y_labels(Y_LABELS)
+        .x_label_formatter(x_format)
+        .y_label_formatter(y_format);
         mesh.draw()?;
     }
     if let Some(note) = look.note {
@@ -522,119 +524,114 @@ where
                 ),
             ),
         ))?;
-        return Ok(());
+        return Ok(right);
     }
-    for (i, series) in panel.series.iter().enumerate() {
-        let colour = colour::series(i);
-        // Past the palette's seven colours, the marker's shape and the line's dashes tell
-        // series of the same colour apart: circles and solid lines, then squares and dashes,
-        // then triangles and dots.
-        let cycle = i / colour::SERIES_COLOURS;
-        let points: Vec<(f64, f64)> = series
-            .points
-            .iter()
-            .copied()
-            .filter(|&(x, y)| panel.x_scale.shows(x) && panel.y_scale.shows(y))
-            .collect();
+    for p in &prepared {
+        let colour = p.sample.colour;
         let line = colour.stroke_width(px(2));
         let radius = px(3);
-        let line_points = match series.mark {
-            Mark::Line => decimate_min_max(&points, look.buckets),
-            Mark::Points => Vec::new(),
-            Mark::LineAndPoints => points.clone(),
-        };
-        let dash = match cycle % 3 {
-            0 => None,
-            1 => Some((px(7), px(4))),
-            _ => Some((px(2), px(3))),
-        };
-        let marks = if series.mark == Mark::Line {
-            Vec::new()
-        } else {
-            points
-        };
-        let shape = cycle % 3;
         let filled = colour.filled();
-        macro_rules! draw_marks {
-            () => {
-                match shape {
-                    0 => {
-                        chart.draw_series(marks.iter().map(|&p| Circle::new(p, radius, filled)))?
-                    }
-                    1 => chart.draw_series(marks.iter().map(|&p| {
-                        let r = radius as i32;
-                        EmptyElement::at(p) + Rectangle::new([(-r, -r), (r, r)], filled)
-                    }))?,
-                    _ => chart.draw_series(
-                        marks
-                            .iter()
-                            .map(|&p| TriangleMarker::new(p, radius + px(1), filled)),
-                    )?,
-                }
-            };
-        }
-        let has_line = !line_points.is_empty();
-        // The line (or, without one, the marks) carries the legend entry; marks go on top.
-        let anno = match dash {
-            _ if !has_line => draw_marks!(),
-            None => chart.draw_series(LineSeries::new(line_points.iter().copied(), line))?,
-            Some((size, spacing)) => chart.draw_series(DashedLineSeries::new(
-                line_points.iter().copied(),
-                size,
-                spacing,
+        match p.sample.dash {
+            0 => chart.draw_series(LineSeries::new(p.line.iter().copied(), line))?,
+            1 => chart.draw_series(DashedLineSeries::new(
+                p.line.iter().copied(),
+                px(7),
+                px(4),
+                line,
+            ))?,
+            _ => chart.draw_series(DashedLineSeries::new(
+                p.line.iter().copied(),
+                px(2),
+                px(3),
                 line,
             ))?,
         };
-        // The legend's sample: the line (solid, dashed or dotted, as drawn) and the mark.
-        let d = move |v: u32| px(v) as i32;
-        let mark_style = if series.mark == Mark::Line {
-            TRANSPARENT.filled()
-        } else {
-            filled
+        match p.sample.marker {
+            0 => chart.draw_series(p.marks.iter().map(|&q| Circle::new(q, radius, filled)))?,
+            1 => chart.draw_series(p.marks.iter().map(|&q| {
+                let r = radius as i32;
+                EmptyElement::at(q) + Rectangle::new([(-r, -r), (r, r)], filled)
+            }))?,
+            _ => chart.draw_series(
+                p.marks
+                    .iter()
+                    .map(|&q| TriangleMarker::new(q, radius + px(1), filled)),
+            )?,
         };
-        let r = radius as i32;
-        let anno = anno.label(series.label.as_str());
-        match shape {
-            0 => anno.legend(move |(x, y)| {
-                EmptyElement::at((x, y))
-                    + PathElement::new(vec![(0, 0), (d(22), 0)], line)
-                    + Circle::new((d(11), 0), r, mark_style)
-            }),
-            1 => anno.legend(move |(x, y)| {
-                EmptyElement::at((x, y))
-                    + PathElement::new(vec![(0, 0), (d(7), 0)], line)
-                    + PathElement::new(vec![(d(15), 0), (d(22), 0)], line)
-                    + Rectangle::new([(d(11) - r, -r), (d(11) + r, r)], mark_style)
-            }),
-            _ => anno.legend(move |(x, y)| {
-                EmptyElement::at((x, y))
-                    + PathElement::new(vec![(0, 0), (d(2), 0)], line)
-                    + PathElement::new(vec![(d(5), 0), (d(7), 0)], line)
-                    + PathElement::new(vec![(d(15), 0), (d(17), 0)], line)
-                    + PathElement::new(vec![(d(20), 0), (d(22), 0)], line)
-                    + TriangleMarker::new((d(11), 0), r + 1, mark_style)
-            }),
-        };
-        if has_line && !marks.is_empty() {
-            draw_marks!();
-        }
     }
-    if !panel.series.is_empty() {
-        chart
-            .configure_series_labels()
-            .position(match panel.legend {
-                LegendCorner::UpperRight => SeriesLabelPosition::UpperRight,
-                LegendCorner::UpperLeft => SeriesLabelPosition::UpperLeft,
-                LegendCorner::LowerLeft => SeriesLabelPosition::LowerLeft,
-            })
-            .margin(px(10))
-            .legend_area_size(px(30))
-            .background_style(WHITE.mix(0.85))
-            .border_style(RGBColor(160, 160, 160).stroke_width(line_width))
-            .label_font(font(15.0 * s))
-            .draw()?;
+    if panel.series.is_empty() {
+        return Ok(right);
     }
-    Ok(())
+    let rect = plot_rect(&chart);
+    let corner = match placement {
+        legend::Placement::Inside(r) => (r.x0, r.y0),
+        legend::Placement::Outside => (rect.x1 + 8.0 * s, rect.y0),
+    };
+    let base = area.get_base_pixel();
+    let entries: Vec<(&str, legend::Sample)> = panel
+        .series
+        .iter()
+        .zip(&prepared)
+        .map(|(series, p)| (series.label.as_str(), p.sample))
+        .collect();
+    legend::draw(
+        area,
+        (
+            corner.0.round() as i32 - base.0,
+            corner.1.round() as i32 - base.1,
+        ),
+        &entries,
+        s,
+    )?;
+    Ok(right)
+}
+
+/// What drawing a panel returns: the right margin it took (device pixels), wider than the
+/// usual when its legend went outside.
+type PanelResult<DB> = Result<u32, DrawingAreaErrorKind<<DB as DrawingBackend>::ErrorType>>;
+
+/// A series ready to draw: its (thinned) polyline, its marks and its legend sample.
+struct Prepared {
+    line: Vec<(f64, f64)>,
+    marks: Vec<(f64, f64)>,
+    sample: legend::Sample,
+}
+
+/// The `i`-th series of `panel` as drawn.
+fn prepare(panel: &Panel, i: usize, series: &Series, buckets: usize) -> Prepared {
+    let points: Vec<(f64, f64)> = series
+        .points
+        .iter()
+        .copied()
+        .filter(|&(x, y)| panel.x_scale.shows(x) && panel.y_scale.shows(y))
+        .collect();
+    let line = match series.mark {
+        Mark::Line => decimate_min_max(&points, buckets),
+        Mark::Points => Vec::new(),
+        Mark::LineAndPoints => points.clone(),
+    };
+    let marks = if series.mark == Mark::Line {
+        Vec::new()
+    } else {
+        points
+    };
+    // Past the palette, the next cycle of colours gets squares and dashes, then triangles
+    // and dots; a series with a look of its own (a family's colour, a method's mark) keeps it.
+    let cycle = (i / colour::SERIES_COLOURS) % 3;
+    let (hue, marker, dash) = series.look.map_or((i, cycle, cycle), |l| {
+        (l.colour, l.variant % 3, (l.variant / 3) % 3)
+    });
+    Prepared {
+        sample: legend::Sample {
+            colour: colour::series(hue),
+            marker,
+            dash,
+            line: !line.is_empty(),
+            marks: series.mark != Mark::Line,
+        },
+        line,
+        marks,
+    }
 }
 
 #[cfg(test)]
@@ -693,7 +690,7 @@ mod tests {
             .map(str::trim)
             .collect();
         assert!(
-            labels.contains(&"1e-8") && labels.contains(&"1e4"),
+            labels.contains(&"10⁻⁸") && labels.contains(&"10⁴"),
             "{labels:?}"
         );
         assert_eq!(text.matches("<circle").count(), 5 + 2 + 2);
@@ -727,25 +724,6 @@ mod tests {
         let text = std::fs::read_to_string(&svg).unwrap();
         assert_eq!(text.matches("<circle").count(), 7 * 3);
         assert_eq!(text.matches("<polygon").count(), 3);
-    }
-
-    #[test]
-    fn log_axis_ticks_are_decades_even_below_machine_epsilon() {
-        let axis = Log10Axis::new(1e-17..1e-14).unwrap();
-        assert_eq!(
-            axis.key_points(plotters::coord::ranged1d::BoldPoints(10)),
-            [1e-17, 1e-16, 1e-15, 1e-14]
-        );
-        let all = axis.key_points(100);
-        assert_eq!(all.len(), 4 + 3 * 8);
-        assert!(all.contains(&5e-16));
-        // Too many decades for the hint: every other one.
-        let wide = Log10Axis::new(1e-20..1.0).unwrap();
-        assert!(wide.key_points(10).len() <= 11);
-        assert_eq!(axis.map(&1e-17, (0, 300)), 0);
-        assert_eq!(axis.map(&1e-14, (0, 300)), 300);
-        assert_eq!(axis.map(&1e-16, (0, 300)), 100);
-        assert!(Log10Axis::new(0.0..1.0).is_none());
     }
 
     #[test]

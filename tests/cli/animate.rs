@@ -28,6 +28,7 @@ fn an_animation_has_one_frame_per_output_time() {
         ("free-body", "body.gif"),
         ("spinning-hoop", "spin.gif"),
         ("driven-hoop", "driven.gif"),
+        ("dzhanibekov", "t-handle.gif"),
     ] {
         succeeds(
             tmp.path(),
@@ -78,4 +79,46 @@ fn animations_that_cannot_be_made_are_refused_before_any_step() {
         let left: Vec<_> = std::fs::read_dir(tmp.path()).unwrap().collect();
         assert!(left.is_empty(), "{args:?} left {left:?}");
     }
+}
+
+#[test]
+fn a_saved_csv_is_animated_at_the_requested_frames() {
+    let tmp = TempDir::new().unwrap();
+    succeeds(
+        tmp.path(),
+        &[
+            "simulate",
+            "free-hoop",
+            "--t-end",
+            "2",
+            "--output-dt",
+            "0.05",
+            "-o",
+            "run.csv",
+        ],
+    );
+    succeeds(
+        tmp.path(),
+        &[
+            "animate",
+            "run.csv",
+            "--duration",
+            "1.5",
+            "--fps",
+            "8",
+            "--size",
+            "160x120",
+            "-o",
+            "run.gif",
+        ],
+    );
+    // 1.5 s at 8 frames per second, both ends included.
+    assert_eq!(gif_frames(&tmp.path().join("run.gif")), (13, (160, 120)));
+    // A CSV keeps its own parameters.
+    let out = tumble_in(
+        tmp.path(),
+        &["animate", "run.csv", "--set", "m=1", "-o", "x.gif"],
+    );
+    assert_eq!(out.status.code(), Some(1));
+    assert!(stderr(&out).contains("--set"), "{}", stderr(&out));
 }

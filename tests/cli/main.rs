@@ -8,6 +8,7 @@ mod inertia;
 mod inertia_sources;
 mod interrupts;
 mod outputs_and_limits;
+mod plot;
 mod refine;
 mod scenes;
 mod simulate;

@@ -442,7 +442,7 @@ fn bad_output_paths_are_rejected_before_running() {
     fails(
         &[],
         &["simulate", "driven-hoop", "-o", "x.csv", "--plot", "x.jpg"],
-        &[".png or .svg"],
+        &[".png, .svg or .pdf"],
     );
     fails(
         &[],

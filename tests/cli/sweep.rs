@@ -94,8 +94,8 @@ fn one_and_two_threads_write_the_same_results_and_a_complete_folder() {
     );
     let svg = read(&dir.join("tilt-map.svg"));
     for label in [
-        "omega0 (rad/s)",
-        "alpha0 (rad)",
+        "ω₀ (rad/s)",
+        "α₀ (rad)",
         "maximum tilt (rad)",
         "√(g/a)",
         "cos α* = g/(a ω₀²)",

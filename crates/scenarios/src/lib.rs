@@ -53,6 +53,7 @@
 
 pub mod body_table;
 pub mod dispatch;
+pub mod display;
 pub mod error;
 pub mod lagrangian;
 pub mod params;

@@ -116,6 +116,9 @@ pub struct Args {
     /// The limits every point of the sweep runs under.
     #[command(flatten)]
     pub limits: PointLimits,
+    /// Size, font size, resolution and SVG text of the folder's figures.
+    #[command(flatten)]
+    pub figure: super::args::FigureArgs,
 }
 
 /// The checks on a sweep's points that `tumble sweep` and the shards of `tumble sweep slurm`
@@ -201,6 +204,9 @@ pub struct MergeArgs {
         allow_negative_numbers = true
     )]
     pub check_tolerance: Option<f64>,
+    /// Size, font size, resolution and SVG text of the folder's figures.
+    #[command(flatten)]
+    pub figure: super::args::FigureArgs,
 }
 
 /// The sweep finished but some points failed: exit status 3.
@@ -369,6 +375,7 @@ pub fn run(args: &Args) -> Result<()> {
         Some(Command::Slurm(s)) => return slurm::run(s),
         None => {}
     }
+    let figure_options = args.figure.options()?;
     // Stage one: everything validated.
     let mut overrides = args
         .set
@@ -441,7 +448,7 @@ pub fn run(args: &Args) -> Result<()> {
         }
         .into());
     }
-    finish(&def, &dir, &report, shard, "sweep", check)
+    finish(&def, &dir, &report, shard, "sweep", check, &figure_options)
 }
 
 /// Refuses a sweep whose fixed step does not resolve the fastest initial rotation at one of
@@ -494,6 +501,7 @@ fn finish(
     shard: Shard,
     command: &str,
     check: CheckSettings,
+    figure_options: &plot::FigureOptions,
 ) -> Result<()> {
     if !report.complete() {
         bail!(
@@ -506,7 +514,7 @@ fn finish(
     let results = dir.join("results.csv");
     output::write_whole(&results, &sweep::results_csv(def, &report.rows)?)?;
     let plots = if shard == Shard::ALL {
-        plot::sweep::draw_plots(def, dir, &report.rows)?
+        plot::sweep::draw_plots(def, dir, &report.rows, figure_options)?
     } else {
         Vec::new()
     };
@@ -667,6 +675,7 @@ fn finish(
 
 /// `tumble sweep merge`.
 fn merge(args: &MergeArgs) -> Result<()> {
+    let figure_options = args.figure.options()?;
     let out = args
         .output
         .clone()
@@ -683,7 +692,15 @@ fn merge(args: &MergeArgs) -> Result<()> {
     let check = CheckSettings::parse(&args.check, args.check_tolerance, threads)?;
     let _lock = output::lock_folder(&out, args.break_lock)?;
     let (def, report) = sweep::merge(&args.dirs, &out)?;
-    finish(&def, &out, &report, Shard::ALL, "merge", check)
+    finish(
+        &def,
+        &out,
+        &report,
+        Shard::ALL,
+        "merge",
+        check,
+        &figure_options,
+    )
 }
 
 fn seconds(d: Duration) -> String {
