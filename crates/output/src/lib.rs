@@ -24,6 +24,8 @@
 //! killed process left are found by [`is_temp_name`] and removed by
 //! [`remove_stale_temp_files`].
 
+pub mod table;
+
 use std::fs::{File, OpenOptions};
 use std::io::{self, Write};
 use std::path::{Path, PathBuf};
