@@ -16,7 +16,7 @@ use tumble_studies::work_precision::{
     self, Config, Ladder, LongRun, fitted_slope, long_run_methods,
 };
 
-use super::simulate::{LoadedScene, SceneArgs, flag_words, load_scene, number};
+use super::simulate::{LoadedScene, SceneArgs, load_scene, number};
 use crate::manifest::{self, WorkPrecisionManifest};
 use crate::output;
 use crate::plot;
@@ -24,6 +24,7 @@ use crate::plot::sweep::round_for_label;
 use crate::plot::work_precision::Curve;
 use crate::plot::xy::Series;
 use crate::signals;
+use tumble_studies::simulation::{Naming, flag_words};
 
 /// Flags of `tumble work-precision`.
 #[derive(clap::Args, Debug)]
@@ -116,7 +117,7 @@ pub fn run(args: &Args) -> Result<()> {
     config.max_run_seconds = args.max_seconds;
     config.max_reference_seconds = REFERENCE_FACTOR * args.max_seconds;
     tumble_scenarios::scene::check_horizon(t_end)
-        .map_err(|e| anyhow::anyhow!("{}: {}", info.name, flag_words(&e)))?;
+        .map_err(|e| anyhow::anyhow!("{}: {}", info.name, flag_words(&e, Naming::Cli)))?;
     let integrators: Vec<String> = if args.integrators.is_empty() {
         info.integrators()
             .iter()

@@ -28,5 +28,6 @@
 //!   ([`sweep::SweepError`], [`tumble_scenarios::SceneError`]).
 
 pub mod hard_cases;
+pub mod simulation;
 pub mod sweep;
 pub mod work_precision;

@@ -35,6 +35,8 @@ use tumble_studies::sweep::{
     SweepReport,
 };
 
+use tumble_output::table::Format;
+
 use super::args::{parse_angle, parse_set};
 use super::simulate::{number, rate_words};
 use crate::manifest::{self, SweepManifest};
@@ -116,7 +118,21 @@ pub struct Args {
     /// The limits every point of the sweep runs under.
     #[command(flatten)]
     pub limits: PointLimits,
+    /// `parquet`: also write the results as `results.parquet` (typed columns, null where a
+    /// metric is undefined, the manifest in the file's key-value metadata under `tumble`);
+    /// `results.csv` is written either way.
+    #[arg(long, value_name = "csv|parquet", default_value = "csv", value_parser = parse_format)]
+    pub format: Format,
 }
+
+/// Parses `--format`.
+fn parse_format(raw: &str) -> Result<Format> {
+    Format::parse(raw)
+        .ok_or_else(|| anyhow::anyhow!("`{raw}` is not a format: give csv or parquet"))
+}
+
+/// The Parquet copy of `results.csv` that `--format parquet` writes.
+pub const RESULTS_PARQUET: &str = "results.parquet";
 
 /// The checks on a sweep's points that `tumble sweep` and the shards of `tumble sweep slurm`
 /// share.
@@ -441,7 +457,7 @@ pub fn run(args: &Args) -> Result<()> {
         }
         .into());
     }
-    finish(&def, &dir, &report, shard, "sweep", check)
+    finish(&def, &dir, &report, shard, ("sweep", args.format), check)
 }
 
 /// Refuses a sweep whose fixed step does not resolve the fastest initial rotation at one of
@@ -492,7 +508,7 @@ fn finish(
     dir: &Path,
     report: &SweepReport,
     shard: Shard,
-    command: &str,
+    (command, format): (&str, Format),
     check: CheckSettings,
 ) -> Result<()> {
     if !report.complete() {
@@ -532,6 +548,11 @@ fn finish(
         &plots,
         self_check.as_ref().map(|c| (c, tolerance)),
     ))?;
+    if format == Format::Parquet {
+        let metadata = vec![(super::simulate::METADATA_KEY.to_string(), text.clone())];
+        let table = sweep::results_table(def, &report.rows, metadata);
+        output::write_whole(&dir.join(RESULTS_PARQUET), &table.to_parquet()?)?;
+    }
     output::write_whole(&dir.join("manifest.json"), text.as_bytes())?;
 
     let failed = report.failures().count();
@@ -683,7 +704,14 @@ fn merge(args: &MergeArgs) -> Result<()> {
     let check = CheckSettings::parse(&args.check, args.check_tolerance, threads)?;
     let _lock = output::lock_folder(&out, args.break_lock)?;
     let (def, report) = sweep::merge(&args.dirs, &out)?;
-    finish(&def, &out, &report, Shard::ALL, "merge", check)
+    finish(
+        &def,
+        &out,
+        &report,
+        Shard::ALL,
+        ("merge", Format::Csv),
+        check,
+    )
 }
 
 fn seconds(d: Duration) -> String {
@@ -721,6 +749,7 @@ fn folder_files(def: &SweepDefinition) -> Vec<String> {
     let mut names = vec![
         "results.csv".to_string(),
         "manifest.json".to_string(),
+        RESULTS_PARQUET.to_string(),
         sweep::COMPUTE.to_string(),
     ];
     if let Some(metric) = def.metrics.first() {
