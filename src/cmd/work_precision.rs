@@ -75,7 +75,7 @@ pub fn run(args: &Args) -> Result<()> {
     } = load_scene(&args.target)?;
     // SIGINT and SIGTERM stop the run under way at a step boundary; nothing is written then.
     signals::flag();
-    let interruptible = signals::Interruptible(scene);
+    let interruptible = signals::interruptible(scene);
     let scene: &dyn Scene = &interruptible;
     let info = scene.info();
     for name in &args.integrators {

@@ -11,12 +11,14 @@
 //! the state a failed run carries by the scene's coordinates and rates.
 
 use std::path::Path;
+use std::sync::atomic::{AtomicBool, Ordering};
 
+use nalgebra::Vector3;
 use tumble_scenarios::scene::{CancelFlag, MAX_ANGLE_PER_STEP};
 use tumble_scenarios::scene_file::SceneFile;
 use tumble_scenarios::{
-    ModelError, Params, RunOptions, RunPlan, Scene, SceneError, SceneInfo, StepControl,
-    StepResolution, scenes,
+    Guide, ModelError, Params, Recorder, RunOptions, RunPlan, RunSummary, Scene, SceneError,
+    SceneInfo, StepControl, StepResolution, scenes,
 };
 
 /// An input refused before any work, with the whole message.
@@ -373,4 +375,61 @@ pub fn failure_message(info: &SceneInfo, e: &SceneError) -> String {
         }
     }
     msg
+}
+
+/// A scene whose runs stop at a step boundary once `flag` is set (by a signal handler, or a
+/// caller that was interrupted): each run polls the flag ([`RunPlan::cancel`]) and a run it
+/// stopped is an error ([`SceneError::Interrupted`]), so that a study built on the scene
+/// (work–precision ladders, its reference) never takes a cut run for a finished one and ends
+/// at once.
+pub struct Interruptible {
+    /// The scene.
+    pub scene: &'static dyn Scene,
+    /// The flag that stops it.
+    pub flag: &'static AtomicBool,
+}
+
+impl Scene for Interruptible {
+    fn info(&self) -> &'static SceneInfo {
+        self.scene.info()
+    }
+
+    fn simulate(
+        &self,
+        params: &Params,
+        plan: &RunPlan,
+        recorder: &mut dyn Recorder,
+    ) -> Result<RunSummary, SceneError> {
+        let stopped = || self.flag.load(Ordering::Relaxed);
+        if stopped() {
+            return Err(SceneError::Interrupted { t: 0.0 });
+        }
+        let watched;
+        let plan = if plan.cancel.is_some() {
+            plan
+        } else {
+            watched = RunPlan {
+                cancel: Some(CancelFlag(self.flag)),
+                ..plan.clone()
+            };
+            &watched
+        };
+        let summary = self.scene.simulate(params, plan, recorder)?;
+        if stopped() && !(summary.t >= plan.t_end || summary.terminated) {
+            return Err(SceneError::Interrupted { t: summary.t });
+        }
+        Ok(summary)
+    }
+
+    fn intermediate_axis(&self, params: &Params) -> Option<Result<Vector3<f64>, SceneError>> {
+        self.scene.intermediate_axis(params)
+    }
+
+    fn initial_rate(&self, params: &Params) -> Option<Result<f64, SceneError>> {
+        self.scene.initial_rate(params)
+    }
+
+    fn map_guides(&self, params: &Params, axes: &[&str], x_range: (f64, f64)) -> Vec<Guide> {
+        self.scene.map_guides(params, axes, x_range)
+    }
 }
