@@ -27,6 +27,7 @@
 //! * **The library never prints**: progress is a callback, failures are typed errors
 //!   ([`sweep::SweepError`], [`tumble_scenarios::SceneError`]).
 
+pub mod catalog;
 pub mod hard_cases;
 pub mod simulation;
 pub mod sweep;
