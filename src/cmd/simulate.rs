@@ -24,7 +24,7 @@ use tumble_scenarios::{Params, Recorder, RunPlan, RunSummary, Scene, SceneInfo, 
 use tumble_studies::simulation::{
     self, Naming, ParamOverride, RunRequest, failure_message, rate_columns,
 };
-pub(crate) use tumble_studies::simulation::{LoadedScene, number, rate_words};
+pub(crate) use tumble_studies::simulation::{LoadedScene, number};
 
 use super::args::parse_set;
 use crate::manifest;

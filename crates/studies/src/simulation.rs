@@ -15,6 +15,8 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 use nalgebra::Vector3;
 use tumble_scenarios::scene::{CancelFlag, MAX_ANGLE_PER_STEP};
+
+use crate::sweep::{SweepDefinition, coarsest_point};
 use tumble_scenarios::scene_file::SceneFile;
 use tumble_scenarios::{
     Guide, ModelError, Params, Recorder, RunOptions, RunPlan, RunSummary, Scene, SceneError,
@@ -256,6 +258,43 @@ pub fn check_resolution(
             |h| format!("{} or smaller", naming.assign("dt", &number(h)))
         ),
         naming.adaptive(),
+        naming.allow_coarse_step(),
+    )))
+}
+
+/// Refuses a sweep whose fixed step does not resolve the fastest initial rotation at one of
+/// its points (the rule of [`check_resolution`], judged at the corners of the axes:
+/// [`crate::sweep::coarsest_point`]), naming the point and a step that resolves every point.
+///
+/// # Errors
+/// The step is too coarse somewhere, or a rate cannot be computed.
+pub fn check_sweep_resolution(def: &SweepDefinition, naming: Naming) -> Result<(), Refused> {
+    let Some(point) =
+        coarsest_point(def).map_err(|e| Refused(format!("{}: {e}", def.origin)))?
+    else {
+        return Ok(());
+    };
+    let r = &point.resolution;
+    if r.resolved() {
+        return Ok(());
+    }
+    let step = |h: f64| match naming {
+        Naming::Cli => format!("--set run.dt={} or smaller", number(h)),
+        Naming::Python => format!("run.dt = {} or smaller", number(h)),
+    };
+    Err(Refused(format!(
+        "{}: run.dt = {} does not resolve the initial rotation at {} ({}): {}; give {} (the \
+         largest rate of the sweep is there), or an adaptive integrator (run.integrator = \
+         \"dop853\" with run.tol), or {} to run anyway",
+        def.origin,
+        number(r.dt),
+        point.index.map_or_else(
+            || "a corner of the axes".to_string(),
+            |i| format!("point {i}")
+        ),
+        point.describe(def),
+        rate_words(r),
+        r.suggested_step().map_or_else(|| "axis values with a finite rate".to_string(), step),
         naming.allow_coarse_step(),
     )))
 }

@@ -38,7 +38,7 @@ use tumble_studies::sweep::{
 use tumble_output::table::Format;
 
 use super::args::{parse_angle, parse_set};
-use super::simulate::{number, rate_words};
+use tumble_studies::simulation::{self, Naming};
 use crate::manifest::{self, SweepManifest};
 use crate::output;
 use crate::plot;
@@ -461,35 +461,9 @@ pub fn run(args: &Args) -> Result<()> {
 }
 
 /// Refuses a sweep whose fixed step does not resolve the fastest initial rotation at one of
-/// its points (the rule `simulate` applies, judged at the corners of the axes:
-/// [`sweep::coarsest_point`]), naming the point and a step that resolves every point.
+/// its points ([`simulation::check_sweep_resolution`]).
 pub(super) fn check_resolution(def: &SweepDefinition) -> Result<()> {
-    let Some(point) =
-        sweep::coarsest_point(def).map_err(|e| anyhow::anyhow!("{}: {e}", def.origin))?
-    else {
-        return Ok(());
-    };
-    let r = &point.resolution;
-    if r.resolved() {
-        return Ok(());
-    }
-    bail!(
-        "{}: run.dt = {} does not resolve the initial rotation at {} ({}): {}; give {} (the \
-         largest rate of the sweep is there), or an adaptive integrator (run.integrator = \
-         \"dop853\" with run.tol), or pass --allow-coarse-step to run anyway",
-        def.origin,
-        number(r.dt),
-        point.index.map_or_else(
-            || "a corner of the axes".to_string(),
-            |i| format!("point {i}")
-        ),
-        point.describe(def),
-        rate_words(r),
-        r.suggested_step().map_or_else(
-            || "axis values with a finite rate".to_string(),
-            |h| format!("--set run.dt={} or smaller", number(h))
-        ),
-    );
+    Ok(simulation::check_sweep_resolution(def, Naming::Cli)?)
 }
 
 /// Refuses a `--point-seconds` that is not a finite, positive number of seconds.
