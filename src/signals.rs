@@ -88,5 +88,8 @@ impl std::error::Error for Interrupted {}
 /// ([`tumble_studies::simulation::Interruptible`] on the signals' flag).
 #[must_use]
 pub fn interruptible(scene: &'static dyn Scene) -> Interruptible {
-    Interruptible { scene, flag: flag() }
+    Interruptible {
+        scene,
+        flag: flag(),
+    }
 }

@@ -8,7 +8,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use tumble_inertia::{MassProperties, MassSpec, TriangleMesh, ValidationOptions, load_mesh};
 
-use crate::value_error;
+use crate::{refused, value_error};
 
 /// The rows of a 3×3 matrix.
 fn rows(m: &Matrix3<f64>) -> [[f64; 3]; 3] {
@@ -75,12 +75,12 @@ pub(crate) fn inertia<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let (mesh, source) = match (path, vertices, faces) {
         (Some(path), None, None) => (
-            load_mesh(&path, &ValidationOptions::default()).map_err(value_error)?,
+            load_mesh(&path, &ValidationOptions::default()).map_err(refused)?,
             path.display().to_string(),
         ),
         (None, Some(v), Some(f)) => (
             TriangleMesh::try_new(points(&v)?, triangles(&f)?)
-                .map_err(|e| value_error(format!("the mesh: {e}")))?,
+                .map_err(|e| value_error(format!("the mesh: {}", crate::message(&e))))?,
             "the mesh".to_string(),
         ),
         _ => {
@@ -101,8 +101,8 @@ pub(crate) fn inertia<'py>(
     };
     let part = mesh
         .mass_properties(spec)
-        .map_err(|e| value_error(format!("{source}: {what}: {e}")))?;
-    let body = MassProperties::combine_all(&[part]).map_err(value_error)?;
+        .map_err(|e| value_error(format!("{source}: {what}: {}", crate::message(&e))))?;
+    let body = MassProperties::combine_all(&[part]).map_err(refused)?;
     let principal = body.principal();
     let out = PyDict::new(py);
     out.set_item("mass", body.mass())?;

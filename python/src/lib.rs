@@ -37,9 +37,27 @@ create_exception!(
 /// How often a waiting call lets Python handle signals (Ctrl-C) and report progress.
 const POLL: Duration = Duration::from_millis(20);
 
-/// A refused input as `ValueError`, with the library's message.
-pub(crate) fn value_error(e: impl std::fmt::Display) -> PyErr {
-    PyValueError::new_err(e.to_string())
+/// A refused input as `ValueError`, with this message.
+pub(crate) fn value_error(message: impl std::fmt::Display) -> PyErr {
+    PyValueError::new_err(message.to_string())
+}
+
+/// A library error's message with its causes, `error: cause: cause`, as the command line
+/// prints it.
+pub(crate) fn message(e: &dyn std::error::Error) -> String {
+    let mut text = e.to_string();
+    let mut source = e.source();
+    while let Some(cause) = source {
+        text.push_str(": ");
+        text.push_str(&cause.to_string());
+        source = cause.source();
+    }
+    text
+}
+
+/// A library error refusing an input, as `ValueError` with the command line's message.
+pub(crate) fn refused(e: impl std::error::Error) -> PyErr {
+    PyValueError::new_err(message(&e))
 }
 
 /// `values` as native-endian bytes, for `numpy.frombuffer`.

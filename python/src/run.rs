@@ -13,7 +13,7 @@ use tumble_studies::simulation::{
 };
 use tumble_studies::work_precision::{self as ladders, Config};
 
-use crate::{SimulationError, f64_bytes, interruptible, value_error};
+use crate::{SimulationError, f64_bytes, interruptible, refused, value_error};
 
 /// The rows of a run, column by column.
 struct Columns(Vec<Vec<f64>>);
@@ -41,13 +41,12 @@ fn overrides(params: Option<&Bound<'_, PyDict>>) -> PyResult<Vec<ParamOverride>>
                     type_name(&k)
                 ))
             })?;
-            let value = number_of(&v)
-                .ok_or_else(|| {
-                    PyTypeError::new_err(format!(
-                        "params['{key}']: expected a number, got {}",
-                        type_name(&v)
-                    ))
-                })?;
+            let value = number_of(&v).ok_or_else(|| {
+                PyTypeError::new_err(format!(
+                    "params['{key}']: expected a number, got {}",
+                    type_name(&v)
+                ))
+            })?;
             Ok(ParamOverride {
                 label: format!("params['{key}']"),
                 key,
@@ -59,8 +58,7 @@ fn overrides(params: Option<&Bound<'_, PyDict>>) -> PyResult<Vec<ParamOverride>>
 
 /// A Python value as a number: `int` or `float` (or a NumPy scalar), not `bool` or `str`.
 pub(crate) fn number_of(v: &Bound<'_, PyAny>) -> Option<f64> {
-    if v.is_instance_of::<pyo3::types::PyBool>() || v.is_instance_of::<pyo3::types::PyString>()
-    {
+    if v.is_instance_of::<pyo3::types::PyBool>() || v.is_instance_of::<pyo3::types::PyString>() {
         return None;
     }
     v.extract::<f64>().ok()
@@ -110,7 +108,7 @@ pub(crate) fn simulate<'py>(
             "every, at, output_dt: give at most one (which rows to keep)",
         ));
     }
-    let loaded = load_scene(scene, &overrides(params)?).map_err(value_error)?;
+    let loaded = load_scene(scene, &overrides(params)?).map_err(refused)?;
     let request = RunRequest {
         integrator,
         step: step(dt, tol)?,
@@ -122,7 +120,7 @@ pub(crate) fn simulate<'py>(
         allow_coarse_step,
         cancel: None,
     };
-    let plan = loaded.plan(&request, Naming::Python).map_err(value_error)?;
+    let plan = loaded.plan(&request, Naming::Python).map_err(refused)?;
     let LoadedScene {
         scene,
         origin,
@@ -186,14 +184,14 @@ pub(crate) fn scenes_json() -> PyResult<String> {
         .iter()
         .map(|s| catalog::entry(s.info()))
         .collect::<Result<Vec<_>, _>>()
-        .map_err(value_error)?;
-    serde_json::to_string(&entries).map_err(value_error)
+        .map_err(refused)?;
+    serde_json::to_string(&entries).map_err(refused)
 }
 
 /// `tumble integrators --json`, as text.
 #[pyfunction]
 pub(crate) fn integrators_json() -> PyResult<String> {
-    serde_json::to_string(tumble_integrators::registry::methods()).map_err(value_error)
+    serde_json::to_string(tumble_integrators::registry::methods()).map_err(refused)
 }
 
 /// Work–precision ladders (see the Python docstring of `tumble.work_precision`).
@@ -207,10 +205,14 @@ pub(crate) fn work_precision<'py>(
     t_end: Option<f64>,
     max_seconds: f64,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let loaded = load_scene(scene, &overrides(params)?).map_err(value_error)?;
+    let loaded = load_scene(scene, &overrides(params)?).map_err(refused)?;
     let info = loaded.scene.info();
-    let integrators = integrators
-        .unwrap_or_else(|| info.integrators().iter().map(|s| (*s).to_string()).collect());
+    let integrators = integrators.unwrap_or_else(|| {
+        info.integrators()
+            .iter()
+            .map(|s| (*s).to_string())
+            .collect()
+    });
     for name in &integrators {
         if !info.runs(name) {
             return Err(PyValueError::new_err(format!(
@@ -226,9 +228,7 @@ pub(crate) fn work_precision<'py>(
             number(max_seconds)
         )));
     }
-    let t_end = t_end
-        .or(loaded.run.t_end)
-        .unwrap_or(info.default_t_end);
+    let t_end = t_end.or(loaded.run.t_end).unwrap_or(info.default_t_end);
     check_horizon(t_end).map_err(|e| {
         PyValueError::new_err(format!("{}: {}", info.name, flag_words(&e, Naming::Python)))
     })?;

@@ -13,7 +13,7 @@ use tumble_studies::simulation::{Naming, check_sweep_resolution};
 use tumble_studies::sweep::{self as sweeps, Progress, RESULTS, RunConfig, Shard, SweepDefinition};
 
 use crate::run::type_name;
-use crate::{SimulationError, f64_bytes, interruptible, value_error};
+use crate::{SimulationError, f64_bytes, interruptible, refused, value_error};
 
 /// A Python value of a sweep dict as TOML; `key` is its dotted path, for messages.
 fn toml_value(key: &str, v: &Bound<'_, PyAny>) -> PyResult<toml::Value> {
@@ -76,8 +76,8 @@ fn toml_table(prefix: &str, d: &Bound<'_, PyDict>) -> PyResult<toml::Table> {
 /// The sweep `definition` names: a sweep file's path, or a dict laid out as a sweep file.
 fn definition(definition: &Bound<'_, PyAny>) -> PyResult<SweepDefinition> {
     if let Ok(d) = definition.cast::<PyDict>() {
-        let text = toml::to_string(&toml_table("", d)?).map_err(value_error)?;
-        return SweepDefinition::parse(&text, "sweep dict", &[]).map_err(value_error);
+        let text = toml::to_string(&toml_table("", d)?).map_err(refused)?;
+        return SweepDefinition::parse(&text, "sweep dict", &[]).map_err(refused);
     }
     let path: PathBuf = definition.extract().map_err(|_| {
         PyTypeError::new_err(format!(
@@ -85,7 +85,7 @@ fn definition(definition: &Bound<'_, PyAny>) -> PyResult<SweepDefinition> {
             type_name(definition)
         ))
     })?;
-    SweepDefinition::load(&path, &[]).map_err(value_error)
+    SweepDefinition::load(&path, &[]).map_err(refused)
 }
 
 /// The result columns as `{name: (kind, payload)}`: `f64` and `i64` as native bytes (an
@@ -130,7 +130,7 @@ pub(crate) fn sweep<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let def = definition(spec)?;
     if !allow_coarse_step {
-        check_sweep_resolution(&def, Naming::Python).map_err(value_error)?;
+        check_sweep_resolution(&def, Naming::Python).map_err(refused)?;
     }
     let threads = match threads {
         Some(0) => {
@@ -149,18 +149,18 @@ pub(crate) fn sweep<'py>(
     // Without an output folder the sweep's journal goes to a temporary folder, removed after.
     let scratch = match &output {
         Some(_) => None,
-        None => Some(tempfile::tempdir().map_err(value_error)?),
+        None => Some(tempfile::tempdir().map_err(refused)?),
     };
     let dir = output
         .clone()
         .or_else(|| scratch.as_ref().map(|d| d.path().to_path_buf()))
         .unwrap_or_default();
-    let results = Destination::check(&dir.join(RESULTS)).map_err(value_error)?;
     std::fs::create_dir_all(&dir)
         .map_err(|e| value_error(format!("{}: cannot create the folder: {e}", dir.display())))?;
+    let results = Destination::check(&dir.join(RESULTS)).map_err(refused)?;
     let since = format!("{:?}", std::time::SystemTime::now());
     let _lock = tumble_output::FolderLock::acquire(&dir, &since, "tumble.sweep (Python)", false)
-        .map_err(value_error)?;
+        .map_err(refused)?;
 
     let latest: Mutex<Option<Progress>> = Mutex::new(None);
     let mut shown: Option<Progress> = None;
@@ -193,7 +193,7 @@ pub(crate) fn sweep<'py>(
             Ok(())
         },
     )?;
-    let report = report.map_err(|e| SimulationError::new_err(e.to_string()))?;
+    let report = report.map_err(|e| SimulationError::new_err(crate::message(&e)))?;
     if !report.complete() {
         return Err(SimulationError::new_err(format!(
             "{}: the sweep stopped with {} of {} points finished; run it again with resume=True",
@@ -203,8 +203,8 @@ pub(crate) fn sweep<'py>(
         )));
     }
     if output.is_some() {
-        let csv = sweeps::results_csv(&def, &report.rows).map_err(value_error)?;
-        results.write_all(&csv).map_err(value_error)?;
+        let csv = sweeps::results_csv(&def, &report.rows).map_err(refused)?;
+        results.write_all(&csv).map_err(refused)?;
     }
     let out = PyDict::new(py);
     out.set_item("columns", columns(py, &def, &report.rows)?)?;

@@ -94,4 +94,3 @@ pub fn entry(info: &SceneInfo) -> Result<Entry, SceneError> {
         default_t_end: resolved.t_end,
     })
 }
-

@@ -269,8 +269,7 @@ pub fn check_resolution(
 /// # Errors
 /// The step is too coarse somewhere, or a rate cannot be computed.
 pub fn check_sweep_resolution(def: &SweepDefinition, naming: Naming) -> Result<(), Refused> {
-    let Some(point) =
-        coarsest_point(def).map_err(|e| Refused(format!("{}: {e}", def.origin)))?
+    let Some(point) = coarsest_point(def).map_err(|e| Refused(format!("{}: {e}", def.origin)))?
     else {
         return Ok(());
     };
@@ -294,7 +293,8 @@ pub fn check_sweep_resolution(def: &SweepDefinition, naming: Naming) -> Result<(
         ),
         point.describe(def),
         rate_words(r),
-        r.suggested_step().map_or_else(|| "axis values with a finite rate".to_string(), step),
+        r.suggested_step()
+            .map_or_else(|| "axis values with a finite rate".to_string(), step),
         naming.allow_coarse_step(),
     )))
 }

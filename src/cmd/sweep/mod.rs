@@ -38,11 +38,11 @@ use tumble_studies::sweep::{
 use tumble_output::table::Format;
 
 use super::args::{parse_angle, parse_set};
-use tumble_studies::simulation::{self, Naming};
 use crate::manifest::{self, SweepManifest};
 use crate::output;
 use crate::plot;
 use crate::signals;
+use tumble_studies::simulation::{self, Naming};
 
 /// Flags of `tumble sweep`.
 #[derive(clap::Args, Debug)]
