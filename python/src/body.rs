@@ -17,7 +17,7 @@ fn rows(m: &Matrix3<f64>) -> [[f64; 3]; 3] {
 
 /// Native-endian `f64` triples from `bytes` (the Python half checked the shape and dtype).
 fn points(bytes: &[u8]) -> PyResult<Vec<Point3<f64>>> {
-    if bytes.len() % 24 != 0 {
+    if !bytes.len().is_multiple_of(24) {
         return Err(PyValueError::new_err(
             "vertices: expected an array of shape (N, 3) of float64",
         ));
@@ -37,7 +37,7 @@ fn points(bytes: &[u8]) -> PyResult<Vec<Point3<f64>>> {
 
 /// Native-endian `i64` index triples from `bytes`, each index checked to be non-negative.
 fn triangles(bytes: &[u8]) -> PyResult<Vec<[usize; 3]>> {
-    if bytes.len() % 24 != 0 {
+    if !bytes.len().is_multiple_of(24) {
         return Err(PyValueError::new_err(
             "faces: expected an array of shape (M, 3) of integers",
         ));

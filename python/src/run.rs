@@ -13,7 +13,7 @@ use tumble_studies::simulation::{
 };
 use tumble_studies::work_precision::{self as ladders, Config};
 
-use crate::{SimulationError, f64_bytes, interruptible, refused, value_error};
+use crate::{SimulationError, f64_bytes, interruptible, refused};
 
 /// The rows of a run, column by column.
 struct Columns(Vec<Vec<f64>>);
