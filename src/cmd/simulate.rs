@@ -1,5 +1,5 @@
-//! `tumble simulate`: run a built-in scene or a scene file and write its trajectory as CSV, with
-//! an optional plot.
+//! `tumble simulate`: run a built-in scene or a scene file and write its trajectory as CSV (or
+//! Parquet), with an optional plot.
 //!
 //! Two stages, as everywhere in the CLI: the flags are turned into a validated scene, parameter
 //! set and run options (scene file first, then `--set` and the run flags over it, then the
@@ -8,9 +8,11 @@
 //!
 //! Output contract (docs/design.md §5): the header is the scene's columns (`t`, coordinates, `_dot`
 //! rates, diagnostics); every number is written in the shortest form that reads back to the
-//! same `f64` (ryu, through the `csv` crate). Files (`-o`, `--plot`) are written to a temporary
-//! file beside the destination and renamed when complete; a failed run leaves neither. A short
-//! summary goes to stderr.
+//! same `f64` (ryu, through the `csv` crate). `--format parquet` (or `-o FILE.parquet`) writes
+//! the same columns as Parquet `DOUBLE`s, bit for bit, with the provenance record in the file's
+//! key-value metadata ([`METADATA_KEY`]); the rows are kept in memory and written at the end.
+//! Files (`-o`, `--plot`) are written to a temporary file beside the destination and renamed
+//! when complete; a failed run leaves neither. A short summary goes to stderr.
 
 use std::io::{self, Write};
 use std::path::{Path, PathBuf};
