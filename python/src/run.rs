@@ -71,6 +71,14 @@ pub(crate) fn type_name(v: &Bound<'_, PyAny>) -> String {
         .map_or_else(|_| "?".to_string(), |n| n.to_string())
 }
 
+/// A step control as `(dt, tol)`, one of them `None`.
+fn dt_tol(step: StepControl) -> (Option<f64>, Option<f64>) {
+    match step {
+        StepControl::Fixed(h) => (Some(h), None),
+        StepControl::Tolerance(t) => (None, Some(t)),
+    }
+}
+
 /// The step control of `dt` / `tol`.
 fn step(dt: Option<f64>, tol: Option<f64>) -> PyResult<Option<StepControl>> {
     match (dt, tol) {
@@ -160,10 +168,7 @@ pub(crate) fn simulate<'py>(
     }
     out.set_item("parameters", parameters)?;
     out.set_item("integrator", plan.integrator())?;
-    let (dt, tol) = match plan.step {
-        StepControl::Fixed(h) => (Some(h), None),
-        StepControl::Tolerance(t) => (None, Some(t)),
-    };
+    let (dt, tol) = dt_tol(plan.step);
     out.set_item("dt", dt)?;
     out.set_item("tol", tol)?;
     out.set_item("t_end", plan.t_end)?;
@@ -276,10 +281,7 @@ pub(crate) fn work_precision<'py>(
     for r in ladders.iter().flat_map(|l| &l.rungs) {
         let row = PyDict::new(py);
         row.set_item("integrator", &r.integrator)?;
-        let (dt, tol) = match r.control {
-            StepControl::Fixed(h) => (Some(h), None),
-            StepControl::Tolerance(t) => (None, Some(t)),
-        };
+        let (dt, tol) = dt_tol(r.control);
         row.set_item("dt", dt)?;
         row.set_item("tol", tol)?;
         row.set_item("steps", r.steps)?;
