@@ -3,7 +3,7 @@
 //! reason's line breaks spaces in both).
 
 use tumble_output::table::Values;
-use tumble_studies::sweep::{PointRow, SweepDefinition, Status, results_csv, results_table};
+use tumble_studies::sweep::{PointRow, Status, SweepDefinition, results_csv, results_table};
 
 const SWEEP: &str = r#"
 scene = "free-hoop"
@@ -31,8 +31,16 @@ fn the_parquet_table_holds_the_values_of_results_csv() {
             index,
             values: def.point(index),
             metrics: vec![Some(0.1 + index as f64 / 3.0), (index == 1).then_some(-0.0)],
-            status: if index == 2 { Status::Failed } else { Status::Ok },
-            reason: if index == 2 { "diverged\nat t = 1".into() } else { String::new() },
+            status: if index == 2 {
+                Status::Failed
+            } else {
+                Status::Ok
+            },
+            reason: if index == 2 {
+                "diverged\nat t = 1".into()
+            } else {
+                String::new()
+            },
         })
         .collect();
     let table = results_table(&def, &rows, vec![("k".into(), "v".into())]);
@@ -48,7 +56,9 @@ fn the_parquet_table_holds_the_values_of_results_csv() {
             let field = &record[k];
             match &column.values {
                 Values::I64(v) => assert_eq!(field.parse::<i64>().unwrap(), v[r]),
-                Values::F64(v) => assert_eq!(field.parse::<f64>().unwrap().to_bits(), v[r].to_bits()),
+                Values::F64(v) => {
+                    assert_eq!(field.parse::<f64>().unwrap().to_bits(), v[r].to_bits())
+                }
                 Values::OptionalF64(v) => match v[r] {
                     None => assert_eq!(field, ""),
                     Some(x) => assert_eq!(field.parse::<f64>().unwrap().to_bits(), x.to_bits()),
