@@ -8,12 +8,9 @@ use std::sync::Arc;
 use std::sync::OnceLock;
 use std::sync::atomic::{AtomicBool, Ordering};
 
-use nalgebra::Vector3;
 use signal_hook::consts::{SIGINT, SIGTERM};
-use tumble_scenarios::scene::CancelFlag;
-use tumble_scenarios::{
-    Guide, Params, Recorder, RunPlan, RunSummary, Scene, SceneError, SceneInfo,
-};
+use tumble_scenarios::Scene;
+pub use tumble_studies::simulation::Interruptible;
 
 /// The flags the handlers set.
 struct Flags {
@@ -87,52 +84,12 @@ impl std::fmt::Display for Interrupted {
 
 impl std::error::Error for Interrupted {}
 
-/// A scene whose runs stop at a step boundary once a signal arrived: each run polls the flag
-/// ([`tumble_scenarios::RunPlan::cancel`]) and a run it stopped is an error
-/// ([`SceneError::Interrupted`]), so that a study built on the scene (work–precision ladders,
-/// its reference) never takes a cut run for a finished one and ends at once.
-pub struct Interruptible(pub &'static dyn Scene);
-
-impl Scene for Interruptible {
-    fn info(&self) -> &'static SceneInfo {
-        self.0.info()
-    }
-
-    fn simulate(
-        &self,
-        params: &Params,
-        plan: &RunPlan,
-        recorder: &mut dyn Recorder,
-    ) -> Result<RunSummary, SceneError> {
-        if interrupted().is_some() {
-            return Err(SceneError::Interrupted { t: 0.0 });
-        }
-        let watched;
-        let plan = if plan.cancel.is_some() {
-            plan
-        } else {
-            watched = RunPlan {
-                cancel: Some(CancelFlag(flag())),
-                ..plan.clone()
-            };
-            &watched
-        };
-        let summary = self.0.simulate(params, plan, recorder)?;
-        if interrupted().is_some() && !(summary.t >= plan.t_end || summary.terminated) {
-            return Err(SceneError::Interrupted { t: summary.t });
-        }
-        Ok(summary)
-    }
-
-    fn intermediate_axis(&self, params: &Params) -> Option<Result<Vector3<f64>, SceneError>> {
-        self.0.intermediate_axis(params)
-    }
-
-    fn initial_rate(&self, params: &Params) -> Option<Result<f64, SceneError>> {
-        self.0.initial_rate(params)
-    }
-
-    fn map_guides(&self, params: &Params, axes: &[&str], x_range: (f64, f64)) -> Vec<Guide> {
-        self.0.map_guides(params, axes, x_range)
+/// A scene whose runs stop at a step boundary once a signal arrived
+/// ([`tumble_studies::simulation::Interruptible`] on the signals' flag).
+#[must_use]
+pub fn interruptible(scene: &'static dyn Scene) -> Interruptible {
+    Interruptible {
+        scene,
+        flag: flag(),
     }
 }

@@ -7,9 +7,8 @@
 //! tolerance `tol` depending on the default integrator.
 
 use anyhow::{Context, Result};
-use serde::Serialize;
 use tumble_scenarios::scenes::builtin;
-use tumble_scenarios::{RunOptions, SceneInfo, StepControl};
+use tumble_studies::catalog::{Entry, entry};
 
 /// Flags of `tumble scenes`.
 #[derive(clap::Args, Debug)]
@@ -21,73 +20,6 @@ pub struct Args {
     pub json: bool,
 }
 
-/// One parameter in the JSON output.
-#[derive(Serialize)]
-struct Parameter {
-    name: &'static str,
-    default: f64,
-    unit: &'static str,
-    domain: String,
-    description: &'static str,
-}
-
-/// One scene in the JSON output; field order is the documented key order.
-#[derive(Serialize)]
-struct Entry {
-    name: &'static str,
-    summary: &'static str,
-    coordinates: &'static [&'static str],
-    columns: Vec<String>,
-    parameters: Vec<Parameter>,
-    conserved: &'static [&'static str],
-    oracle: &'static str,
-    problems: Vec<&'static str>,
-    integrators: Vec<&'static str>,
-    default_integrator: &'static str,
-    default_error: f64,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    default_dt: Option<f64>,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    default_tol: Option<f64>,
-    default_t_end: f64,
-}
-
-fn entry(info: &SceneInfo) -> Result<Entry> {
-    let resolved = RunOptions::default()
-        .resolve(info)
-        .with_context(|| format!("scene `{}`: its own defaults are invalid", info.name))?;
-    let (default_dt, default_tol) = match resolved.step {
-        StepControl::Fixed(h) => (Some(h), None),
-        StepControl::Tolerance(tol) => (None, Some(tol)),
-    };
-    Ok(Entry {
-        name: info.name,
-        summary: info.summary,
-        coordinates: info.coordinates,
-        columns: info.columns(),
-        parameters: info
-            .parameters
-            .iter()
-            .map(|p| Parameter {
-                name: p.name,
-                default: p.default,
-                unit: p.unit,
-                domain: p.domain.to_string(),
-                description: p.description,
-            })
-            .collect(),
-        conserved: info.conserved,
-        oracle: info.oracle,
-        problems: info.problems.iter().map(|k| k.name()).collect(),
-        integrators: info.integrators(),
-        default_integrator: info.default_integrator,
-        default_error: info.default_error,
-        default_dt,
-        default_tol,
-        default_t_end: resolved.t_end,
-    })
-}
-
 /// Runs the subcommand.
 ///
 /// # Errors
@@ -95,7 +27,11 @@ fn entry(info: &SceneInfo) -> Result<Entry> {
 pub fn run(args: &Args) -> Result<()> {
     let entries = builtin()
         .iter()
-        .map(|s| entry(s.info()))
+        .map(|s| {
+            let info = s.info();
+            entry(info)
+                .with_context(|| format!("scene `{}`: its own defaults are invalid", info.name))
+        })
         .collect::<Result<Vec<_>>>()?;
     if args.json {
         println!("{}", serde_json::to_string_pretty(&entries)?);

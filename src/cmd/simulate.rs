@@ -1,5 +1,5 @@
-//! `tumble simulate`: run a built-in scene or a scene file and write its trajectory as CSV, with
-//! an optional plot.
+//! `tumble simulate`: run a built-in scene or a scene file and write its trajectory as CSV (or
+//! Parquet), with an optional plot.
 //!
 //! Two stages, as everywhere in the CLI: the flags are turned into a validated scene, parameter
 //! set and run options (scene file first, then `--set` and the run flags over it, then the
@@ -8,9 +8,11 @@
 //!
 //! Output contract (docs/design.md §5): the header is the scene's columns (`t`, coordinates, `_dot`
 //! rates, diagnostics); every number is written in the shortest form that reads back to the
-//! same `f64` (ryu, through the `csv` crate). Files (`-o`, `--plot`) are written to a temporary
-//! file beside the destination and renamed when complete; a failed run leaves neither. A short
-//! summary goes to stderr.
+//! same `f64` (ryu, through the `csv` crate). `--format parquet` (or `-o FILE.parquet`) writes
+//! the same columns as Parquet `DOUBLE`s, bit for bit, with the provenance record in the file's
+//! key-value metadata ([`METADATA_KEY`]); the rows are kept in memory and written at the end.
+//! Files (`-o`, `--plot`) are written to a temporary file beside the destination and renamed
+//! when complete; a failed run leaves neither. A short summary goes to stderr.
 
 use std::io::{self, Write};
 use std::path::{Path, PathBuf};
@@ -18,14 +20,11 @@ use std::time::Instant;
 
 use anyhow::{Context, Result, bail};
 use tumble_integrators::Flow;
-use tumble_scenarios::StepResolution;
-use tumble_scenarios::scene::{CancelFlag, MAX_ANGLE_PER_STEP};
-use tumble_scenarios::scene_file::SceneFile;
-use tumble_scenarios::scenes;
-use tumble_scenarios::{
-    ModelError, Params, Recorder, RunOptions, RunPlan, RunSummary, Scene, SceneError, SceneInfo,
-    StepControl,
-};
+use tumble_output::table::{Column, Format, Table, Values};
+use tumble_scenarios::scene::CancelFlag;
+use tumble_scenarios::{Params, Recorder, RunPlan, RunSummary, Scene, SceneInfo, StepControl};
+use tumble_studies::simulation::{self, Naming, ParamOverride, RunRequest, failure_message};
+pub(crate) use tumble_studies::simulation::{LoadedScene, number};
 
 use super::args::parse_set;
 use crate::manifest;
@@ -98,9 +97,14 @@ pub struct Args {
     /// 0.5 rad a step (a step that does not resolve the motion is refused otherwise).
     #[arg(long = "allow-coarse-step")]
     pub allow_coarse_step: bool,
-    /// Write the CSV to FILE instead of stdout (`-` is stdout).
-    #[arg(short = 'o', long = "output", value_name = "FILE.csv")]
+    /// Write the trajectory to FILE instead of stdout (`-` is stdout).
+    #[arg(short = 'o', long = "output", value_name = "FILE.csv|FILE.parquet")]
     pub output: Option<PathBuf>,
+    /// The trajectory's format: `csv`, or `parquet` (typed columns, the provenance record in
+    /// the file's key-value metadata under `tumble`) [default: `parquet` when -o ends in
+    /// `.parquet`, else `csv`].
+    #[arg(long, value_name = "csv|parquet", value_parser = parse_format)]
+    pub format: Option<Format>,
     /// Also draw the coordinates, rates and relative energy error against time, as PNG, SVG
     /// or PDF by the file's extension.
     #[arg(long, value_name = "FILE.png|FILE.svg|FILE.pdf")]
@@ -118,14 +122,6 @@ struct Setup {
     plan: RunPlan,
     /// The frame a `[body]` scene's rows report, in words (`None`: the scene's own body frame).
     frame: Option<String>,
-}
-
-/// Whether SCENE names a file rather than a built-in scene.
-fn is_file(arg: &str) -> bool {
-    Path::new(arg)
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("toml"))
-        || Path::new(arg).is_file()
 }
 
 /// A scene and its parameter overrides, as `simulate` and `work-precision` take them.
@@ -146,97 +142,44 @@ pub struct SceneArgs {
     pub set: Vec<String>,
 }
 
-/// A scene as the command line names it, with its parameters and the file's run options.
-pub(crate) struct LoadedScene {
-    /// The scene.
-    pub scene: &'static dyn Scene,
-    /// Where it came from: `builtin` or the scene file's path.
-    pub origin: String,
-    /// Its parameters: defaults, then the file's values, then `--set`.
-    pub params: Params,
-    /// The scene file's `[run]` options (none for a built-in scene).
-    pub run: RunOptions,
-    /// The frame the rows report when the scene file has a `[body]` table.
-    pub frame: Option<String>,
-}
-
 /// The scene of `target` (built-in name or TOML file) with its `--set` overrides.
 pub(crate) fn load_scene(target: &SceneArgs) -> Result<LoadedScene> {
-    let (arg, set) = (target.scene.as_str(), target.set.as_slice());
-    let (scene, origin, mut params, options, frame) = if is_file(arg) {
-        let file = SceneFile::load(Path::new(arg))?;
-        (file.scene, file.origin, file.params, file.run, file.frame)
-    } else {
-        let scene = scenes::find(arg).map_err(|e| match e {
-            SceneError::UnknownScene { name, known } => anyhow::anyhow!(
-                "unknown scene `{name}` (and no file of that name); built-in scenes: {known}; \
-                 a scene file must end in .toml"
-            ),
-            other => other.into(),
-        })?;
-        let params = scene.info().default_params();
-        (
-            scene,
-            "builtin".to_string(),
-            params,
-            RunOptions::default(),
-            None,
-        )
-    };
-    for raw in set {
-        let (key, value) = parse_set(raw, "omega0=5")?;
-        params
-            .set(key, value)
-            .with_context(|| format!("--set {raw}"))?;
-    }
-    Ok(LoadedScene {
-        scene,
-        origin,
-        params,
-        run: options,
-        frame,
-    })
+    let overrides = target
+        .set
+        .iter()
+        .map(|raw| {
+            let (key, value) = parse_set(raw, "omega0=5")?;
+            Ok(ParamOverride {
+                label: format!("--set {raw}"),
+                key: key.to_string(),
+                value,
+            })
+        })
+        .collect::<Result<Vec<_>>>()?;
+    Ok(simulation::load_scene(&target.scene, &overrides)?)
 }
 
 /// Stage one: the scene, parameters and options from the flags, validated.
 fn setup(args: &Args) -> Result<Setup> {
-    let LoadedScene {
-        scene,
-        origin,
-        params,
-        run: mut options,
-        frame,
-    } = load_scene(&args.target)?;
-    if let Some(name) = &args.integrator {
-        options.integrator = Some(name.clone());
-    }
-    match (args.dt, args.tol) {
-        (Some(h), _) => options.step = Some(StepControl::Fixed(h)),
-        (None, Some(tol)) => options.step = Some(StepControl::Tolerance(tol)),
-        (None, None) => {}
-    }
-    if args.t_end.is_some() {
-        options.t_end = args.t_end;
-    }
-    if args.every.is_some() {
-        options.every = args.every;
-        options.at = None;
-        options.output_dt = None;
-    }
-    if let Some(raw) = &args.at {
-        options.at = Some(parse_times(raw)?);
-        options.output_dt = None;
-    }
-    if args.output_dt.is_some() {
-        options.output_dt = args.output_dt;
-        options.at = None;
-    }
-    options.max_steps = Some(args.max_steps);
-    options.cancel = Some(CancelFlag(signals::flag()));
-    let plan = options
-        .resolve(scene.info())
-        .map_err(|e| anyhow::anyhow!("{}: {}", scene.info().name, flag_words(&e)))?;
-    check_budget(&plan, scene.info(), args)?;
+    let loaded = load_scene(&args.target)?;
+    let at = args.at.as_deref().map(parse_times).transpose()?;
+    let request = RunRequest {
+        integrator: args.integrator.clone(),
+        step: match (args.dt, args.tol) {
+            (Some(h), _) => Some(StepControl::Fixed(h)),
+            (None, Some(tol)) => Some(StepControl::Tolerance(tol)),
+            (None, None) => None,
+        },
+        t_end: args.t_end,
+        every: args.every,
+        at,
+        output_dt: args.output_dt,
+        max_steps: Some(args.max_steps),
+        allow_coarse_step: true,
+        cancel: Some(CancelFlag(signals::flag())),
+    };
+    let plan = loaded.plan(&request, Naming::Cli)?;
+    check_budget(&plan, loaded.scene.info(), args)?;
     if !(args.energy_warn >= 0.0) {
         bail!(
             "--energy-warn {}: must be a relative energy error >= 0",
@@ -244,58 +187,15 @@ fn setup(args: &Args) -> Result<Setup> {
         );
     }
     if !args.allow_coarse_step {
-        check_resolution(scene, &params, &plan)?;
+        simulation::check_resolution(loaded.scene, &loaded.params, &plan, Naming::Cli)?;
     }
     Ok(Setup {
-        scene,
-        origin,
-        params,
+        scene: loaded.scene,
+        origin: loaded.origin,
+        params: loaded.params,
         plan,
-        frame,
+        frame: loaded.frame,
     })
-}
-
-/// Refuses a fixed step that does not resolve the initial state's fastest rotation (the rule
-/// of [`StepResolution`], shared with sweeps), with the bound and a step that resolves it.
-fn check_resolution(scene: &dyn Scene, params: &Params, plan: &RunPlan) -> Result<()> {
-    let info = scene.info();
-    let Some(r) = StepResolution::of(scene, params, plan)
-        .map_err(|e| anyhow::anyhow!("{}: {e}", info.name))?
-    else {
-        return Ok(());
-    };
-    if !r.resolved() {
-        bail!(
-            "{}: dt = {} does not resolve the initial rotation: {}; give {} (or an adaptive \
-             integrator, --integrator dop853), or pass --allow-coarse-step to run anyway",
-            info.name,
-            number(r.dt),
-            rate_words(&r),
-            r.suggested_step().map_or_else(
-                || "parameters with a finite rate".to_string(),
-                |h| format!("--dt {} or smaller", number(h))
-            ),
-        );
-    }
-    Ok(())
-}
-
-/// `|ω| ≈ R rad/s turns A rad a step, above the bound h·|ω| ≤ 0.5`.
-pub(crate) fn rate_words(r: &StepResolution) -> String {
-    format!(
-        "|ω| ≈ {} rad/s turns {} rad a step, above the bound h·|ω| ≤ {MAX_ANGLE_PER_STEP}",
-        significant(r.rate),
-        significant(r.angle())
-    )
-}
-
-/// `x` to three significant digits (in exponent form outside `[1e-3, 1e7)`).
-fn significant(x: f64) -> String {
-    if (1e-3..1e7).contains(&x.abs()) {
-        format!("{}", format!("{x:.2e}").parse::<f64>().unwrap_or(x))
-    } else {
-        format!("{x:.2e}")
-    }
 }
 
 /// Parses a byte count with an optional suffix: `1000`, `500k`, `20M`, `10G`.
@@ -359,6 +259,16 @@ fn check_budget(plan: &RunPlan, info: &SceneInfo, args: &Args) -> Result<()> {
     Ok(())
 }
 
+/// The key of a Parquet trajectory's key-value metadata that holds its provenance record (the
+/// JSON written beside a CSV).
+pub const METADATA_KEY: &str = "tumble";
+
+/// Parses `--format`.
+fn parse_format(raw: &str) -> Result<Format> {
+    Format::parse(raw)
+        .ok_or_else(|| anyhow::anyhow!("`{raw}` is not a format: give csv or parquet"))
+}
+
 /// Parses `--at T1,T2,...`: plain numbers (their order and range are checked with the plan).
 fn parse_times(raw: &str) -> Result<Vec<f64>> {
     raw.split(',')
@@ -374,92 +284,10 @@ fn parse_times(raw: &str) -> Result<Vec<f64>> {
         .collect()
 }
 
-/// A run-option error in the words of the command line (`--dt` for `dt`, `--t-end` for
-/// `t_end`).
-pub(crate) fn flag_words(e: &SceneError) -> String {
-    match e {
-        SceneError::InvalidOption {
-            option,
-            value,
-            reason,
-        } => {
-            let flag = match *option {
-                "t_end" => "--t-end",
-                "dt" => "--dt",
-                "tol" => "--tol",
-                "every" => "--every",
-                "at" => "--at",
-                "output_dt" => "--output-dt",
-                _ => return e.to_string(),
-            };
-            if value.is_nan() && matches!(*option, "at" | "output_dt") {
-                format!("{flag}: {reason}")
-            } else {
-                format!("{flag} {}: {reason}", number(*value))
-            }
-        }
-        SceneError::UnsupportedIntegrator { .. } => format!("--integrator: {e}"),
-        _ => e.to_string(),
-    }
-}
-
-/// A number as a person would type it: plain, or in exponent form when very small or large.
-pub(crate) fn number(x: f64) -> String {
-    if x != 0.0 && x.is_finite() && !(1e-4..1e6).contains(&x.abs()) {
-        format!("{x:e}")
-    } else {
-        format!("{x}")
-    }
-}
-
-/// The state a failure carries, if any.
-fn failure_state(e: &SceneError) -> Option<&[f64]> {
-    use tumble_integrators::Error as I;
-    match e {
-        SceneError::Model(
-            ModelError::SingularMassMatrix { state, .. } | ModelError::NonFinite { state, .. },
-        )
-        | SceneError::Integration(
-            I::NonFinite { state, .. }
-            | I::NoConvergence { state, .. }
-            | I::SingularMatrix { state, .. }
-            | I::StepSizeUnderflow { state, .. }
-            | I::TooManySteps { state, .. }
-            | I::TimeLimit { state, .. },
-        ) => Some(state),
-        _ => None,
-    }
-}
-
-/// A run failure with the state it carries, named by the scene's coordinates and rates when
-/// the state has one value for each.
-fn failure_message(info: &SceneInfo, e: &SceneError) -> String {
-    let mut msg = format!("{}: {e}", info.name);
-    if let Some(state) = failure_state(e) {
-        let names: Vec<String> = info
-            .coordinates
-            .iter()
-            .map(|c| (*c).to_string())
-            .chain(plot::trajectory::rate_columns(info))
-            .collect();
-        if names.len() == state.len() {
-            let parts: Vec<String> = names
-                .iter()
-                .zip(state)
-                .map(|(n, v)| format!("{n} = {}", number(*v)))
-                .collect();
-            msg += &format!("\n  state: {}", parts.join(", "));
-        } else {
-            let values: Vec<String> = state.iter().map(|v| number(*v)).collect();
-            msg += &format!("\n  state: [{}]", values.join(", "));
-        }
-    }
-    msg
-}
-
-/// Writes rows as CSV and keeps them, column by column, when a plot needs them.
+/// Writes rows as CSV (unless the output is Parquet) and keeps them, column by column, when a
+/// plot or a Parquet file needs them.
 struct CsvRecorder<W: Write> {
-    csv: csv::Writer<W>,
+    csv: Option<csv::Writer<W>>,
     keep: Option<Vec<Vec<f64>>>,
     error: Option<csv::Error>,
     /// Stdout was closed by the reader (`| head`): stop quietly.
@@ -467,9 +295,15 @@ struct CsvRecorder<W: Write> {
 }
 
 impl<W: Write> CsvRecorder<W> {
-    fn new(out: W, columns: &[String], keep: bool) -> Result<Self> {
-        let mut csv = csv::Writer::from_writer(out);
-        csv.write_record(columns)?;
+    fn new(out: Option<W>, columns: &[String], keep: bool) -> Result<Self> {
+        let csv = match out {
+            Some(out) => {
+                let mut csv = csv::Writer::from_writer(out);
+                csv.write_record(columns)?;
+                Some(csv)
+            }
+            None => None,
+        };
         Ok(CsvRecorder {
             csv,
             keep: keep.then(|| vec![Vec::new(); columns.len()]),
@@ -494,7 +328,8 @@ impl<W: Write> CsvRecorder<W> {
             return Err(e.into());
         }
         if !self.closed
-            && let Err(e) = self.csv.flush()
+            && let Some(csv) = &mut self.csv
+            && let Err(e) = csv.flush()
         {
             if e.kind() == io::ErrorKind::BrokenPipe {
                 self.closed = true;
@@ -508,7 +343,9 @@ impl<W: Write> CsvRecorder<W> {
 
 impl<W: Write> Recorder for CsvRecorder<W> {
     fn row(&mut self, values: &[f64]) -> Flow {
-        if let Err(e) = self.csv.serialize(values) {
+        if let Some(csv) = &mut self.csv
+            && let Err(e) = csv.serialize(values)
+        {
             return self.fail(e);
         }
         if let Some(keep) = &mut self.keep {
@@ -602,8 +439,8 @@ struct Outcome {
     closed: bool,
 }
 
-/// Runs the scene into `out`.
-fn run_into<W: Write>(setup: &Setup, out: W, keep: bool) -> Result<Outcome> {
+/// Runs the scene into `out` (CSV), or only keeps the rows when `out` is `None`.
+fn run_into<W: Write>(setup: &Setup, out: Option<W>, keep: bool) -> Result<Outcome> {
     let info = setup.scene.info();
     let mut recorder = CsvRecorder::new(out, &info.columns(), keep)?;
     let result = setup
@@ -663,17 +500,21 @@ pub fn run(args: &Args) -> Result<()> {
         }
         _ => None,
     };
+    let format = args
+        .format
+        .unwrap_or_else(|| args.output.as_deref().map_or(Format::Csv, Format::of_path));
+    let parquet = format == Format::Parquet;
+    let keep = args.plot.is_some() || parquet;
     let start = Instant::now();
     let (outcome, written) = match &csv_dest {
+        // A Parquet file is written whole after the run, from the kept columns.
+        _ if parquet => (run_into::<io::Sink>(&setup, None, true)?, None),
         Some(dest) if *dest.mode() != output::Mode::Stdout => {
             let mut out = dest.create().context("-o")?;
-            let outcome = run_into(&setup, &mut out, args.plot.is_some())?;
+            let outcome = run_into(&setup, Some(&mut out), keep)?;
             (outcome, Some(out))
         }
-        _ => (
-            run_into(&setup, io::stdout().lock(), args.plot.is_some())?,
-            None,
-        ),
+        _ => (run_into(&setup, Some(io::stdout().lock()), keep)?, None),
     };
     let Outcome {
         summary,
@@ -685,14 +526,14 @@ pub fn run(args: &Args) -> Result<()> {
         // Dropping the unfinished output removes its temporary file: nothing is left behind.
         drop(written);
         let kept = match csv_dest.as_ref().map(output::Destination::mode) {
-            None | Some(output::Mode::Stdout | output::Mode::Stream) => format!(
+            None | Some(output::Mode::Stdout | output::Mode::Stream) if !parquet => format!(
                 "the rows up to t = {} went to {}",
                 number(summary.t),
                 args.output
                     .as_ref()
                     .map_or_else(|| "stdout".to_string(), |p| p.display().to_string())
             ),
-            Some(output::Mode::Atomic { .. }) => "nothing was written".to_string(),
+            _ => "nothing was written".to_string(),
         };
         return Err(signals::Interrupted {
             code,
@@ -717,29 +558,48 @@ pub fn run(args: &Args) -> Result<()> {
         );
         plot::save_to(&figure, dest, &figure_options)?;
     }
-    if let Some(dest) = &sidecar {
-        let text = manifest::to_text(&SimulationRecord::new(
-            &setup,
-            &summary,
-            elapsed.as_secs_f64(),
-            args.output.as_deref(),
-            args.energy_warn,
-        ))?;
-        dest.write_all(text.as_bytes())?;
-    }
-    if let Some(out) = written
-        && let Err(e) = out.finish()
-    {
-        if let Some(dest) = &sidecar {
-            let _ = std::fs::remove_file(dest.file());
-        }
+    let record = manifest::to_text(&SimulationRecord::new(
+        &setup,
+        &summary,
+        elapsed.as_secs_f64(),
+        args.output.as_deref(),
+        args.energy_warn,
+    ))?;
+    let trajectory = if parquet {
+        let columns = info.columns().into_iter().zip(kept.unwrap_or_default());
+        let table = Table {
+            columns: columns
+                .map(|(name, v)| Column {
+                    name,
+                    values: Values::F64(v),
+                })
+                .collect(),
+            metadata: vec![(METADATA_KEY.to_string(), record.clone())],
+        };
+        let dest = match csv_dest {
+            Some(dest) => dest,
+            None => output::Destination::check(Path::new("-"))?,
+        };
+        table
+            .to_parquet()
+            .map_err(anyhow::Error::from)
+            .and_then(|bytes| Ok(dest.write_all(&bytes)?))
+    } else if let Some(out) = written {
+        out.finish().map_err(anyhow::Error::from)
+    } else {
+        Ok(())
+    };
+    if let Err(e) = trajectory {
         if let Some(dest) = &plot_dest
             && let output::Mode::Atomic { target } = dest.mode()
         {
-            // Do not leave the plot of a run whose CSV could not be written.
+            // Do not leave the plot of a run whose trajectory could not be written.
             let _ = std::fs::remove_file(target);
         }
-        return Err(e.into());
+        return Err(e);
+    }
+    if let Some(dest) = &sidecar {
+        dest.write_all(record.as_bytes())?;
     }
 
     let r = &setup.plan;

@@ -16,13 +16,14 @@ use tumble_studies::work_precision::{
     self, Config, Ladder, LongRun, fitted_slope, long_run_methods,
 };
 
-use super::simulate::{LoadedScene, SceneArgs, flag_words, load_scene, number};
+use super::simulate::{LoadedScene, SceneArgs, load_scene, number};
 use crate::manifest::{self, WorkPrecisionManifest};
 use crate::output;
 use crate::plot;
 use crate::plot::work_precision::Curve;
 use crate::plot::xy::Series;
 use crate::signals;
+use tumble_studies::simulation::{Naming, flag_words};
 
 /// Flags of `tumble work-precision`.
 #[derive(clap::Args, Debug)]
@@ -77,7 +78,7 @@ pub fn run(args: &Args) -> Result<()> {
     } = load_scene(&args.target)?;
     // SIGINT and SIGTERM stop the run under way at a step boundary; nothing is written then.
     signals::flag();
-    let interruptible = signals::Interruptible(scene);
+    let interruptible = signals::interruptible(scene);
     let scene: &dyn Scene = &interruptible;
     let info = scene.info();
     for name in &args.integrators {
@@ -119,7 +120,7 @@ pub fn run(args: &Args) -> Result<()> {
     config.max_run_seconds = args.max_seconds;
     config.max_reference_seconds = REFERENCE_FACTOR * args.max_seconds;
     tumble_scenarios::scene::check_horizon(t_end)
-        .map_err(|e| anyhow::anyhow!("{}: {}", info.name, flag_words(&e)))?;
+        .map_err(|e| anyhow::anyhow!("{}: {}", info.name, flag_words(&e, Naming::Cli)))?;
     let integrators: Vec<String> = if args.integrators.is_empty() {
         info.integrators()
             .iter()

@@ -192,7 +192,7 @@ pub fn simulation(
     columns: &[String],
     values: &[Vec<f64>],
 ) -> StackedFigure {
-    let rates = rate_columns(info);
+    let rates = tumble_studies::simulation::rate_columns(info);
     let run = Run {
         columns,
         values,
@@ -202,19 +202,6 @@ pub fn simulation(
     let mut figure = figure(format!("{} — {integrator}, {step}", info.name), &run);
     figure.subtitle = super::labels::parameters(params);
     figure
-}
-
-/// The rate columns of scene `info`: its named rates, or its coordinates with `_dot`.
-#[must_use]
-pub fn rate_columns(info: &tumble_scenarios::SceneInfo) -> Vec<String> {
-    if info.rate_names.is_empty() {
-        info.coordinates
-            .iter()
-            .map(|c| format!("{c}_dot"))
-            .collect()
-    } else {
-        info.rate_names.iter().map(|r| (*r).to_string()).collect()
-    }
 }
 
 #[cfg(test)]

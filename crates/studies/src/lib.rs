@@ -64,6 +64,8 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+pub mod catalog;
 pub mod hard_cases;
+pub mod simulation;
 pub mod sweep;
 pub mod work_precision;

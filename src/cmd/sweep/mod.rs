@@ -35,12 +35,14 @@ use tumble_studies::sweep::{
     SweepReport,
 };
 
+use tumble_output::table::Format;
+
 use super::args::{parse_angle, parse_set};
-use super::simulate::{number, rate_words};
 use crate::manifest::{self, SweepManifest};
 use crate::output;
 use crate::plot;
 use crate::signals;
+use tumble_studies::simulation::{self, Naming};
 
 /// Flags of `tumble sweep`.
 #[derive(clap::Args, Debug)]
@@ -119,7 +121,21 @@ pub struct Args {
     /// Size, font size, resolution and SVG text of the folder's figures.
     #[command(flatten)]
     pub figure: super::args::FigureArgs,
+    /// `parquet`: also write the results as `results.parquet` (typed columns, null where a
+    /// metric is undefined, the manifest in the file's key-value metadata under `tumble`);
+    /// `results.csv` is written either way.
+    #[arg(long, value_name = "csv|parquet", default_value = "csv", value_parser = parse_format)]
+    pub format: Format,
 }
+
+/// Parses `--format`.
+fn parse_format(raw: &str) -> Result<Format> {
+    Format::parse(raw)
+        .ok_or_else(|| anyhow::anyhow!("`{raw}` is not a format: give csv or parquet"))
+}
+
+/// The Parquet copy of `results.csv` that `--format parquet` writes.
+pub const RESULTS_PARQUET: &str = "results.parquet";
 
 /// The checks on a sweep's points that `tumble sweep` and the shards of `tumble sweep slurm`
 /// share.
@@ -448,39 +464,21 @@ pub fn run(args: &Args) -> Result<()> {
         }
         .into());
     }
-    finish(&def, &dir, &report, shard, "sweep", check, &figure_options)
+    finish(
+        &def,
+        &dir,
+        &report,
+        shard,
+        ("sweep", args.format),
+        check,
+        &figure_options,
+    )
 }
 
 /// Refuses a sweep whose fixed step does not resolve the fastest initial rotation at one of
-/// its points (the rule `simulate` applies, judged at the corners of the axes:
-/// [`sweep::coarsest_point`]), naming the point and a step that resolves every point.
+/// its points ([`simulation::check_sweep_resolution`]).
 pub(super) fn check_resolution(def: &SweepDefinition) -> Result<()> {
-    let Some(point) =
-        sweep::coarsest_point(def).map_err(|e| anyhow::anyhow!("{}: {e}", def.origin))?
-    else {
-        return Ok(());
-    };
-    let r = &point.resolution;
-    if r.resolved() {
-        return Ok(());
-    }
-    bail!(
-        "{}: run.dt = {} does not resolve the initial rotation at {} ({}): {}; give {} (the \
-         largest rate of the sweep is there), or an adaptive integrator (run.integrator = \
-         \"dop853\" with run.tol), or pass --allow-coarse-step to run anyway",
-        def.origin,
-        number(r.dt),
-        point.index.map_or_else(
-            || "a corner of the axes".to_string(),
-            |i| format!("point {i}")
-        ),
-        point.describe(def),
-        rate_words(r),
-        r.suggested_step().map_or_else(
-            || "axis values with a finite rate".to_string(),
-            |h| format!("--set run.dt={} or smaller", number(h))
-        ),
-    );
+    Ok(simulation::check_sweep_resolution(def, Naming::Cli)?)
 }
 
 /// Refuses a `--point-seconds` that is not a finite, positive number of seconds.
@@ -499,7 +497,7 @@ fn finish(
     dir: &Path,
     report: &SweepReport,
     shard: Shard,
-    command: &str,
+    (command, format): (&str, Format),
     check: CheckSettings,
     figure_options: &plot::FigureOptions,
 ) -> Result<()> {
@@ -540,6 +538,11 @@ fn finish(
         &plots,
         self_check.as_ref().map(|c| (c, tolerance)),
     ))?;
+    if format == Format::Parquet {
+        let metadata = vec![(super::simulate::METADATA_KEY.to_string(), text.clone())];
+        let table = sweep::results_table(def, &report.rows, metadata);
+        output::write_whole(&dir.join(RESULTS_PARQUET), &table.to_parquet()?)?;
+    }
     output::write_whole(&dir.join("manifest.json"), text.as_bytes())?;
 
     let failed = report.failures().count();
@@ -697,7 +700,7 @@ fn merge(args: &MergeArgs) -> Result<()> {
         &out,
         &report,
         Shard::ALL,
-        "merge",
+        ("merge", Format::Csv),
         check,
         &figure_options,
     )
@@ -738,6 +741,7 @@ fn folder_files(def: &SweepDefinition) -> Vec<String> {
     let mut names = vec![
         "results.csv".to_string(),
         "manifest.json".to_string(),
+        RESULTS_PARQUET.to_string(),
         sweep::COMPUTE.to_string(),
     ];
     if let Some(metric) = def.metrics.first() {

@@ -9,6 +9,8 @@ use std::process::Command;
 
 use tumble_output::{Destination, Mode, OutputError};
 
+mod table;
+
 /// Whether this process runs as root (device nodes can only be made by root).
 fn is_root() -> bool {
     Command::new("id")

@@ -19,6 +19,8 @@ use std::io::{BufWriter, Read, Seek, SeekFrom, Write};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
+use tumble_output::table::{Column, Table, Values};
+
 use super::definition::SweepDefinition;
 use super::{Shard, SweepError};
 
@@ -190,6 +192,48 @@ pub fn results_csv(def: &SweepDefinition, rows: &[PointRow]) -> Result<Vec<u8>, 
         write_row(&mut w, def, row)?;
     }
     w.into_inner().map_err(|e| SweepError::Csv(e.to_string()))
+}
+
+/// `results.csv` as a typed table, column for column: `index` and `level` as integers, the
+/// axes as numbers, the metrics as numbers that are null where undefined, `status` and
+/// `reason` (line breaks as spaces) as text. `metadata` goes into the file's footer.
+#[must_use]
+pub fn results_table(
+    def: &SweepDefinition,
+    rows: &[PointRow],
+    metadata: Vec<(String, String)>,
+) -> Table {
+    let whole = |x: u64| i64::try_from(x).unwrap_or(i64::MAX);
+    let mut values: Vec<Values> = vec![Values::I64(rows.iter().map(|r| whole(r.index)).collect())];
+    if def.refine.is_some() {
+        let level = |r: &PointRow| def.level(r.index).map_or(-1, i64::from);
+        values.push(Values::I64(rows.iter().map(level).collect()));
+    }
+    for k in 0..def.axes.len() {
+        values.push(Values::F64(rows.iter().map(|r| r.values[k]).collect()));
+    }
+    for k in 0..def.metrics.len() {
+        values.push(Values::OptionalF64(
+            rows.iter().map(|r| r.metrics[k]).collect(),
+        ));
+    }
+    values.push(Values::Text(
+        rows.iter().map(|r| r.status.name().to_string()).collect(),
+    ));
+    values.push(Values::Text(
+        rows.iter()
+            .map(|r| r.reason.replace(['\r', '\n'], " "))
+            .collect(),
+    ));
+    Table {
+        columns: def
+            .columns()
+            .into_iter()
+            .zip(values)
+            .map(|(name, values)| Column { name, values })
+            .collect(),
+        metadata,
+    }
 }
 
 /// The rows of a `results.csv` text, checked against the definition (the header, every

@@ -106,7 +106,7 @@ pub use compute::{COMPUTE, ComputeRecord, ComputeRun, ComputeTotals};
 pub use definition::{Axis, AxisValues, Sampling, Spacing, SweepDefinition};
 pub use engine::{Progress, RunConfig, SweepReport, run, run_point};
 pub use file_error::{Origin, SweepFileError};
-pub use journal::{DEFINITION, JOURNAL, PointRow, RESULTS, Status, results_csv};
+pub use journal::{DEFINITION, JOURNAL, PointRow, RESULTS, Status, results_csv, results_table};
 pub use merge::{Unfinished, UnfinishedShard, merge};
 pub use metrics::{ColumnOp, Metric};
 pub use overrides::{Override, OverrideValue};

@@ -7,4 +7,5 @@ mod hard_cases;
 mod max_tilt_reference;
 mod method_agreement;
 mod refinement;
+mod results_table;
 mod work_precision;

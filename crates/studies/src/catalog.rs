@@ -1,0 +1,96 @@
+//! The catalogue of built-in scenes as `tumble scenes --json` prints it and `tumble.scenes()`
+//! returns it: coordinates, columns, parameters, conserved quantities, oracle, applicable
+//! integrators and the default run (the scene's options resolved: a fixed step `default_dt`
+//! or a tolerance `default_tol`, depending on the default integrator).
+
+use serde::Serialize;
+use tumble_scenarios::{RunOptions, SceneError, SceneInfo, StepControl};
+
+/// One parameter of a scene.
+#[derive(Debug, Clone, Serialize)]
+pub struct Parameter {
+    /// Name.
+    pub name: &'static str,
+    /// Default value.
+    pub default: f64,
+    /// Unit.
+    pub unit: &'static str,
+    /// Allowed values, in words.
+    pub domain: String,
+    /// What it is.
+    pub description: &'static str,
+}
+
+/// One scene in the catalogue (`tumble scenes --json`, `tumble.scenes()`); field order is the
+/// documented key order.
+#[derive(Debug, Clone, Serialize)]
+pub struct Entry {
+    /// Name.
+    pub name: &'static str,
+    /// One line.
+    pub summary: &'static str,
+    /// Generalized coordinates.
+    pub coordinates: &'static [&'static str],
+    /// Trajectory columns.
+    pub columns: Vec<String>,
+    /// Parameters.
+    pub parameters: Vec<Parameter>,
+    /// Conserved quantities.
+    pub conserved: &'static [&'static str],
+    /// The independent truth its runs are checked against.
+    pub oracle: &'static str,
+    /// Problem kinds it offers integrators.
+    pub problems: Vec<&'static str>,
+    /// Applicable integrators.
+    pub integrators: Vec<&'static str>,
+    /// Integrator of the default run.
+    pub default_integrator: &'static str,
+    /// Error of the default run against the reference.
+    pub default_error: f64,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    /// Default fixed step (fixed-step default integrator).
+    pub default_dt: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    /// Default tolerance (adaptive default integrator).
+    pub default_tol: Option<f64>,
+    /// Default horizon (s).
+    pub default_t_end: f64,
+}
+
+/// The catalogue entry of a scene.
+///
+/// # Errors
+/// The scene's own default options do not resolve (a bug in the scene).
+pub fn entry(info: &SceneInfo) -> Result<Entry, SceneError> {
+    let resolved = RunOptions::default().resolve(info)?;
+    let (default_dt, default_tol) = match resolved.step {
+        StepControl::Fixed(h) => (Some(h), None),
+        StepControl::Tolerance(tol) => (None, Some(tol)),
+    };
+    Ok(Entry {
+        name: info.name,
+        summary: info.summary,
+        coordinates: info.coordinates,
+        columns: info.columns(),
+        parameters: info
+            .parameters
+            .iter()
+            .map(|p| Parameter {
+                name: p.name,
+                default: p.default,
+                unit: p.unit,
+                domain: p.domain.to_string(),
+                description: p.description,
+            })
+            .collect(),
+        conserved: info.conserved,
+        oracle: info.oracle,
+        problems: info.problems.iter().map(|k| k.name()).collect(),
+        integrators: info.integrators(),
+        default_integrator: info.default_integrator,
+        default_error: info.default_error,
+        default_dt,
+        default_tol,
+        default_t_end: resolved.t_end,
+    })
+}

@@ -1,0 +1,370 @@
+"""tumble from Python: high-accuracy rigid-body dynamics.
+
+The functions here call the same library code as the ``tumble`` command line, so a run gives
+the same numbers, to the last bit, and a refused input the same reason:
+
+* :func:`simulate` runs a built-in scene or a TOML scene file and returns a
+  :class:`Simulation` whose columns are NumPy arrays (``.to_pandas()``, ``.to_polars()``);
+* :func:`sweep` runs a parameter sweep (a sweep file or a dict laid out like one) and returns
+  its results as a DataFrame (pandas, or polars, or a dict of arrays);
+* :func:`inertia` computes the mass properties of a closed triangle mesh (a file, or vertex and
+  face arrays);
+* :func:`scenes`, :func:`integrators` list what there is; :func:`work_precision` measures error
+  against cost.
+
+Long runs release the GIL; Ctrl-C stops them at the next step and raises
+``KeyboardInterrupt``. Inputs refused before any work raise ``ValueError`` (``TypeError`` for a
+value of the wrong type), naming the argument or key; a run that fails raises
+:class:`SimulationError` with the time and state it carries.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import sys
+from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Union
+
+import numpy as np
+
+from . import _tumble
+from ._tumble import SimulationError
+
+__version__: str = _tumble.__version__
+
+__all__ = [
+    "Simulation",
+    "SimulationError",
+    "__version__",
+    "inertia",
+    "integrators",
+    "scenes",
+    "simulate",
+    "sweep",
+    "work_precision",
+]
+
+PathLike = Union[str, "os.PathLike[str]"]
+
+
+def _f64(raw: bytes) -> np.ndarray:
+    return np.frombuffer(raw, dtype=np.float64).copy()
+
+
+class Simulation:
+    """The trajectory of one run and how it was made.
+
+    ``result["t"]`` (or ``result.columns["t"]``) is a NumPy array of the column ``t``;
+    ``result.names`` lists the columns in order (``t``, the coordinates, the rates, the
+    diagnostics). The run's record is in attributes: ``scene``, ``origin``, ``frame``,
+    ``parameters``, ``integrator``, ``dt`` or ``tol``, ``t_end``, ``every``, ``at``, ``steps``,
+    ``evaluations``, ``reached_t``, ``max_energy_rel_err`` (the largest relative energy error
+    over every step), ``version``.
+    """
+
+    def __init__(self, raw: Dict[str, Any]) -> None:
+        names: List[str] = list(raw.pop("columns"))
+        rows: int = raw["rows"]
+        data = _f64(raw.pop("data"))
+        self.names: List[str] = names
+        self.columns: Dict[str, np.ndarray] = {
+            name: data[k * rows : (k + 1) * rows] for k, name in enumerate(names)
+        }
+        self.rows: int = rows
+        self.scene: str = raw["scene"]
+        self.origin: str = raw["origin"]
+        self.frame: str = raw["frame"]
+        self.parameters: Dict[str, float] = raw["parameters"]
+        self.integrator: str = raw["integrator"]
+        self.dt: Optional[float] = raw["dt"]
+        self.tol: Optional[float] = raw["tol"]
+        self.t_end: float = raw["t_end"]
+        self.every: int = raw["every"]
+        self.at: Optional[List[float]] = raw["at"]
+        self.steps: int = raw["steps"]
+        self.evaluations: int = raw["evaluations"]
+        self.reached_t: float = raw["reached_t"]
+        self.max_energy_rel_err: float = raw["max_energy_rel_err"]
+        self.version: str = raw["version"]
+
+    def __getitem__(self, name: str) -> np.ndarray:
+        try:
+            return self.columns[name]
+        except KeyError:
+            raise KeyError(
+                f"{name!r}: no such column; the columns are {', '.join(self.names)}"
+            ) from None
+
+    def __len__(self) -> int:
+        return self.rows
+
+    def __repr__(self) -> str:
+        step = f"dt={self.dt}" if self.dt is not None else f"tol={self.tol}"
+        return (
+            f"<Simulation {self.scene}: {self.integrator}, {step}, t in [0, {self.t_end}], "
+            f"{self.rows} rows x {len(self.names)} columns>"
+        )
+
+    def to_pandas(self) -> Any:
+        """The columns as a ``pandas.DataFrame`` (needs pandas)."""
+        import pandas as pd
+
+        return pd.DataFrame({name: self.columns[name] for name in self.names})
+
+    def to_polars(self) -> Any:
+        """The columns as a ``polars.DataFrame`` (needs polars)."""
+        import polars as pl
+
+        return pl.DataFrame({name: self.columns[name] for name in self.names})
+
+
+def simulate(
+    scene: PathLike,
+    params: Optional[Mapping[str, float]] = None,
+    integrator: Optional[str] = None,
+    dt: Optional[float] = None,
+    tol: Optional[float] = None,
+    t_end: Optional[float] = None,
+    at: Optional[Sequence[float]] = None,
+    *,
+    every: Optional[int] = None,
+    output_dt: Optional[float] = None,
+    max_steps: int = 1_000_000_000,
+    allow_coarse_step: bool = False,
+) -> Simulation:
+    """Run a scene and return its trajectory, as ``tumble simulate`` does.
+
+    ``scene`` is a built-in scene (:func:`scenes`) or a TOML scene file (a path ending in
+    ``.toml`` or naming an existing file). ``params`` sets parameters over the scene's (or the
+    file's) values. ``integrator``, ``dt`` (fixed step) or ``tol`` (adaptive tolerance),
+    ``t_end`` (horizon) override the file's ``[run]`` options and the scene's defaults. Rows:
+    every step (or every ``every``-th), or at the times ``at`` or every ``output_dt`` seconds
+    from dense output, and always the final state.
+
+    A fixed step that turns the initial rotation by more than 0.5 rad a step is refused unless
+    ``allow_coarse_step=True``. Raises ``ValueError``/``TypeError`` for a refused input,
+    :class:`SimulationError` when the run fails, ``KeyboardInterrupt`` on Ctrl-C.
+    """
+    raw = _tumble.simulate(
+        os.fspath(scene),
+        params=None if params is None else dict(params),
+        integrator=integrator,
+        dt=dt,
+        tol=tol,
+        t_end=t_end,
+        at=None if at is None else [float(x) for x in at],
+        every=every,
+        output_dt=output_dt,
+        max_steps=max_steps,
+        allow_coarse_step=allow_coarse_step,
+    )
+    return Simulation(raw)
+
+
+def _progress_bar(total_hint: Optional[int] = None) -> Callable[[int, int, int], None]:
+    """A progress callback: a tqdm bar (notebook or terminal) if tqdm is installed, else a line
+    on stderr rewritten in place."""
+    try:
+        from tqdm.auto import tqdm
+    except ImportError:
+        tqdm = None
+    state: Dict[str, Any] = {}
+
+    def update(finished: int, total: int, failed: int) -> None:
+        if tqdm is not None:
+            bar = state.get("bar")
+            if bar is None:
+                bar = state["bar"] = tqdm(total=total, unit="point", desc="sweep")
+            bar.update(finished - bar.n)
+            bar.set_postfix(failed=failed, refresh=False)
+            if finished >= total:
+                bar.close()
+        else:
+            end = "\n" if finished >= total else ""
+            sys.stderr.write(f"\rsweep: {finished}/{total} points, {failed} failed{end}")
+            sys.stderr.flush()
+
+    return update
+
+
+def _frame(columns: Dict[str, np.ndarray], kind: str) -> Any:
+    if kind == "pandas":
+        import pandas as pd
+
+        return pd.DataFrame(columns)
+    if kind == "polars":
+        import polars as pl
+
+        return pl.DataFrame(columns)
+    if kind == "dict":
+        return columns
+    raise ValueError(f"frame={kind!r}: give 'pandas', 'polars', 'dict' or None")
+
+
+def _default_frame() -> str:
+    for kind, module in (("pandas", "pandas"), ("polars", "polars")):
+        try:
+            __import__(module)
+            return kind
+        except ImportError:
+            continue
+    return "dict"
+
+
+def sweep(
+    file_or_dict: Union[PathLike, Mapping[str, Any]],
+    threads: Optional[int] = None,
+    output: Optional[PathLike] = None,
+    resume: bool = False,
+    *,
+    allow_coarse_step: bool = False,
+    progress: Union[bool, Callable[[int, int, int], None]] = True,
+    frame: Optional[str] = None,
+) -> Any:
+    """Run a parameter sweep and return its results, one row per point, as ``tumble sweep``
+    writes ``results.csv``: ``index`` (``level`` for a refined sweep), the axes, the metrics
+    (NaN where undefined), ``status``, ``reason``.
+
+    ``file_or_dict`` is a sweep file (TOML) or a dict laid out like one (``{"scene": ...,
+    "axes": {...}, "run": {...}, "metrics": {...}}``). ``threads``: worker threads (default: the
+    cores). ``output``: a folder for the journal and ``results.csv`` (default: a temporary
+    folder, removed after); ``resume=True`` continues the sweep in ``output``. ``progress``:
+    ``True`` shows a bar (tqdm in Jupyter or a terminal when installed, else a line on stderr),
+    ``False`` nothing, or a callable ``f(finished, total, failed)``. ``frame``: ``'pandas'``,
+    ``'polars'`` or ``'dict'`` (default: pandas if installed, else polars, else a dict of
+    arrays). The result's ``attrs`` (pandas) hold the run's record.
+
+    Ctrl-C stops the sweep (finished points stay in ``output``'s journal for ``resume=True``)
+    and raises ``KeyboardInterrupt``.
+    """
+    spec: Any = dict(file_or_dict) if isinstance(file_or_dict, Mapping) else os.fspath(file_or_dict)
+    callback = _progress_bar() if progress is True else (progress or None)
+    raw = _tumble.sweep(
+        spec,
+        threads=threads,
+        output=None if output is None else os.fspath(output),
+        resume=resume,
+        allow_coarse_step=allow_coarse_step,
+        progress=callback,
+    )
+    columns: Dict[str, np.ndarray] = {}
+    for name, kind, payload in raw.pop("columns"):
+        if kind == "f64":
+            columns[name] = _f64(payload)
+        elif kind == "i64":
+            columns[name] = np.frombuffer(payload, dtype=np.int64).copy()
+        else:
+            columns[name] = np.array(payload, dtype=object)
+    result = _frame(columns, frame or _default_frame())
+    if hasattr(result, "attrs"):
+        result.attrs.update(raw)
+    return result
+
+
+def inertia(
+    path_or_arrays: Union[PathLike, Sequence[Any]],
+    density: Optional[float] = None,
+    mass: Optional[float] = None,
+) -> Dict[str, Any]:
+    """Mass properties of a closed triangle mesh, as ``tumble inertia --json`` prints them.
+
+    ``path_or_arrays`` is a mesh file (OBJ or STL) or a pair ``(vertices, faces)``: vertices an
+    array of shape ``(N, 3)`` of floats (metres), faces an array of shape ``(M, 3)`` of integer
+    vertex indices, counter-clockwise seen from outside. ``density`` (kg/m³) or ``mass`` (kg)
+    sets the mass (default: density 1).
+
+    Returns a dict: ``mass``, ``volume``, ``center_of_mass`` (3,), ``inertia`` (3, 3) about the
+    centre of mass, ``principal_moments`` (3,) ascending, ``principal_axes`` (3, 3) whose
+    columns are the axes, ``principal_euler_zyz`` (3,).
+    """
+    if isinstance(path_or_arrays, (str, os.PathLike)):
+        raw = _tumble.inertia(path=os.fspath(path_or_arrays), density=density, mass=mass)
+    else:
+        if not isinstance(path_or_arrays, (tuple, list)) or len(path_or_arrays) != 2:
+            raise TypeError(
+                "path_or_arrays: expected a mesh file's path or a pair (vertices, faces)"
+            )
+        vertices = _mesh_array("vertices", path_or_arrays[0], "N", floating=True)
+        faces = _mesh_array("faces", path_or_arrays[1], "M", floating=False)
+        raw = _tumble.inertia(
+            vertices=vertices.astype(np.float64).tobytes(),
+            faces=faces.astype(np.int64).tobytes(),
+            density=density,
+            mass=mass,
+        )
+    return {
+        key: np.array(value) if isinstance(value, (list, tuple)) else value
+        for key, value in raw.items()
+    }
+
+
+def _mesh_array(name: str, value: Any, rows: str, floating: bool) -> np.ndarray:
+    array = np.asarray(value)
+    kind = "floats (float32 or float64)" if floating else "integers"
+    if array.ndim != 2 or array.shape[1] != 3:
+        raise ValueError(
+            f"{name}: expected an array of shape ({rows}, 3) of {kind}, got shape {array.shape}"
+        )
+    ok = array.dtype.kind == "f" if floating else array.dtype.kind in "iu"
+    if not ok:
+        raise ValueError(
+            f"{name}: expected an array of shape ({rows}, 3) of {kind}, got dtype {array.dtype}"
+        )
+    if array.dtype.kind == "u" and array.size and array.max() > np.iinfo(np.int64).max:
+        raise ValueError(f"{name}: an index does not fit in 64 bits")
+    return np.ascontiguousarray(array)
+
+
+def scenes() -> List[Dict[str, Any]]:
+    """The built-in scenes, as ``tumble scenes --json`` lists them: name, summary, coordinates,
+    columns, parameters (name, default, unit, domain, description), conserved quantities,
+    oracle, applicable integrators and the default run."""
+    return json.loads(_tumble.scenes_json())
+
+
+def integrators() -> List[Dict[str, Any]]:
+    """Every integrator, as ``tumble integrators --json`` lists them: name, order, family,
+    properties, stages, problem, summary."""
+    return json.loads(_tumble.integrators_json())
+
+
+def work_precision(
+    scene: PathLike,
+    params: Optional[Mapping[str, float]] = None,
+    integrators: Optional[Sequence[str]] = None,
+    t_end: Optional[float] = None,
+    max_seconds: float = 0.5,
+    *,
+    frame: Optional[str] = None,
+) -> Any:
+    """Error at the final time against cost, per integrator, as ``tumble work-precision``
+    measures it: a reference solution (cross-checked), then for each integrator a ladder of
+    steps or tolerances until a run takes ``max_seconds`` or the error reaches round-off.
+
+    Returns one row per run (``integrator``, ``dt`` or ``tol``, ``steps``, ``evaluations``,
+    ``error``, ``max_energy_rel_err``, ``seconds``) as a DataFrame (``frame`` as for
+    :func:`sweep`); ``attrs`` (pandas) hold the reference and why each ladder stopped. Times
+    depend on the machine and its load.
+    """
+    raw = _tumble.work_precision(
+        os.fspath(scene),
+        params=None if params is None else dict(params),
+        integrators=None if integrators is None else list(integrators),
+        t_end=t_end,
+        max_seconds=max_seconds,
+    )
+    rungs = raw.pop("rungs")
+    keys = ["integrator", "dt", "tol", "steps", "evaluations", "error", "max_energy_rel_err", "seconds"]
+    columns: Dict[str, np.ndarray] = {}
+    for key in keys:
+        values = [r[key] for r in rungs]
+        if key == "integrator":
+            columns[key] = np.array(values, dtype=object)
+        elif key in ("steps", "evaluations"):
+            columns[key] = np.array(values, dtype=np.int64)
+        else:
+            columns[key] = np.array([np.nan if v is None else v for v in values], dtype=np.float64)
+    result = _frame(columns, frame or _default_frame())
+    if hasattr(result, "attrs"):
+        result.attrs.update(raw)
+    return result

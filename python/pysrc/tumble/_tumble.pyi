@@ -1,0 +1,61 @@
+"""Type stubs of the native module ``tumble._tumble`` (the raw results the ``tumble``
+package turns into NumPy arrays and DataFrames)."""
+
+from typing import Any, Callable, Dict, List, Optional, Union
+
+__version__: str
+
+class SimulationError(RuntimeError):
+    """A run that failed: a model or integration error, with the time and state it carries."""
+
+def simulate(
+    scene: str,
+    params: Optional[Dict[str, float]] = None,
+    integrator: Optional[str] = None,
+    dt: Optional[float] = None,
+    tol: Optional[float] = None,
+    t_end: Optional[float] = None,
+    at: Optional[List[float]] = None,
+    every: Optional[int] = None,
+    output_dt: Optional[float] = None,
+    max_steps: int = 1_000_000_000,
+    allow_coarse_step: bool = False,
+) -> Dict[str, Any]:
+    """The run's record, ``columns`` (names) and ``data``: the columns one after the other,
+    native-endian float64 bytes, ``rows`` values each."""
+
+def work_precision(
+    scene: str,
+    params: Optional[Dict[str, float]] = None,
+    integrators: Optional[List[str]] = None,
+    t_end: Optional[float] = None,
+    max_seconds: float = 0.5,
+) -> Dict[str, Any]:
+    """The reference, ``rungs`` (a dict per run) and ``stopped`` (why each ladder stopped)."""
+
+def scenes_json() -> str:
+    """``tumble scenes --json``."""
+
+def integrators_json() -> str:
+    """``tumble integrators --json``."""
+
+def sweep(
+    spec: Union[str, Dict[str, Any]],
+    threads: Optional[int] = None,
+    output: Optional[str] = None,
+    resume: bool = False,
+    allow_coarse_step: bool = False,
+    progress: Optional[Callable[[int, int, int], None]] = None,
+) -> Dict[str, Any]:
+    """The run's record and ``columns``: ``(name, kind, payload)`` with kind ``f64``/``i64``
+    (native-endian bytes) or ``str`` (a list)."""
+
+def inertia(
+    path: Optional[str] = None,
+    vertices: Optional[bytes] = None,
+    faces: Optional[bytes] = None,
+    density: Optional[float] = None,
+    mass: Optional[float] = None,
+) -> Dict[str, Union[float, List[float], List[List[float]]]]:
+    """Mass properties; ``vertices`` (float64) and ``faces`` (int64) as native-endian bytes of
+    ``(N, 3)`` and ``(M, 3)`` arrays."""

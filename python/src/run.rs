@@ -1,0 +1,301 @@
+//! `simulate`, `work_precision`, and the catalogues of scenes and integrators.
+
+use pyo3::exceptions::{PyTypeError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList};
+use tumble_integrators::Flow;
+use tumble_scenarios::scene::{CancelFlag, check_horizon};
+use tumble_scenarios::{Recorder, SceneError, StepControl, scenes};
+use tumble_studies::catalog;
+use tumble_studies::simulation::{
+    Interruptible, LoadedScene, Naming, ParamOverride, RunRequest, failure_message, flag_words,
+    load_scene, number,
+};
+use tumble_studies::work_precision::{self as ladders, Config};
+
+use crate::{SimulationError, f64_bytes, interruptible, refused};
+
+/// The rows of a run, column by column.
+struct Columns(Vec<Vec<f64>>);
+
+impl Recorder for Columns {
+    fn row(&mut self, values: &[f64]) -> Flow {
+        for (column, &v) in self.0.iter_mut().zip(values) {
+            column.push(v);
+        }
+        Flow::Continue
+    }
+}
+
+/// `params` (a dict of parameter names to numbers) as overrides, labelled `params['KEY']`.
+fn overrides(params: Option<&Bound<'_, PyDict>>) -> PyResult<Vec<ParamOverride>> {
+    let Some(params) = params else {
+        return Ok(Vec::new());
+    };
+    params
+        .iter()
+        .map(|(k, v)| {
+            let key: String = k.extract().map_err(|_| {
+                PyTypeError::new_err(format!(
+                    "params: keys are parameter names (str), got {}",
+                    type_name(&k)
+                ))
+            })?;
+            let value = number_of(&v).ok_or_else(|| {
+                PyTypeError::new_err(format!(
+                    "params['{key}']: expected a number, got {}",
+                    type_name(&v)
+                ))
+            })?;
+            Ok(ParamOverride {
+                label: format!("params['{key}']"),
+                key,
+                value,
+            })
+        })
+        .collect()
+}
+
+/// A Python value as a number: `int` or `float` (or a NumPy scalar), not `bool` or `str`.
+pub(crate) fn number_of(v: &Bound<'_, PyAny>) -> Option<f64> {
+    if v.is_instance_of::<pyo3::types::PyBool>() || v.is_instance_of::<pyo3::types::PyString>() {
+        return None;
+    }
+    v.extract::<f64>().ok()
+}
+
+/// The name of a value's type, for messages.
+pub(crate) fn type_name(v: &Bound<'_, PyAny>) -> String {
+    v.get_type()
+        .name()
+        .map_or_else(|_| "?".to_string(), |n| n.to_string())
+}
+
+/// A step control as `(dt, tol)`, one of them `None`.
+fn dt_tol(step: StepControl) -> (Option<f64>, Option<f64>) {
+    match step {
+        StepControl::Fixed(h) => (Some(h), None),
+        StepControl::Tolerance(t) => (None, Some(t)),
+    }
+}
+
+/// The step control of `dt` / `tol`.
+fn step(dt: Option<f64>, tol: Option<f64>) -> PyResult<Option<StepControl>> {
+    match (dt, tol) {
+        (Some(_), Some(_)) => Err(PyValueError::new_err(
+            "dt and tol: give one (a fixed step, or a tolerance for an adaptive integrator)",
+        )),
+        (Some(h), None) => Ok(Some(StepControl::Fixed(h))),
+        (None, Some(t)) => Ok(Some(StepControl::Tolerance(t))),
+        (None, None) => Ok(None),
+    }
+}
+
+/// Runs a scene (see the Python docstring of `tumble.simulate`).
+#[pyfunction]
+#[pyo3(signature = (scene, params=None, integrator=None, dt=None, tol=None, t_end=None, at=None,
+    every=None, output_dt=None, max_steps=1_000_000_000, allow_coarse_step=false))]
+pub(crate) fn simulate<'py>(
+    py: Python<'py>,
+    scene: &str,
+    params: Option<&Bound<'py, PyDict>>,
+    integrator: Option<String>,
+    dt: Option<f64>,
+    tol: Option<f64>,
+    t_end: Option<f64>,
+    at: Option<Vec<f64>>,
+    every: Option<u64>,
+    output_dt: Option<f64>,
+    max_steps: u64,
+    allow_coarse_step: bool,
+) -> PyResult<Bound<'py, PyDict>> {
+    if usize::from(every.is_some()) + usize::from(at.is_some()) + usize::from(output_dt.is_some())
+        > 1
+    {
+        return Err(PyValueError::new_err(
+            "every, at, output_dt: give at most one (which rows to keep)",
+        ));
+    }
+    let loaded = load_scene(scene, &overrides(params)?).map_err(refused)?;
+    let request = RunRequest {
+        integrator,
+        step: step(dt, tol)?,
+        t_end,
+        every,
+        at,
+        output_dt,
+        max_steps: Some(max_steps),
+        allow_coarse_step,
+        cancel: None,
+    };
+    let plan = loaded.plan(&request, Naming::Python).map_err(refused)?;
+    let LoadedScene {
+        scene,
+        origin,
+        params,
+        frame,
+        ..
+    } = loaded;
+    let info = scene.info();
+    let columns = info.columns();
+    let n = columns.len();
+    let (result, rows) = interruptible(
+        py,
+        |flag| {
+            let mut plan = plan.clone();
+            plan.cancel = Some(CancelFlag(flag));
+            let mut rows = Columns(vec![Vec::new(); n]);
+            let result = scene.simulate(&params, &plan, &mut rows);
+            (result, rows.0)
+        },
+        |_| Ok(()),
+    )?;
+    let summary = result.map_err(|e| SimulationError::new_err(failure_message(info, &e)))?;
+    let out = PyDict::new(py);
+    out.set_item("columns", &columns)?;
+    let data: Vec<f64> = rows.concat();
+    out.set_item("data", f64_bytes(py, &data))?;
+    out.set_item("rows", summary.rows)?;
+    out.set_item("scene", info.name)?;
+    out.set_item("origin", origin)?;
+    out.set_item(
+        "frame",
+        frame.unwrap_or_else(|| "the scene's body frame".to_string()),
+    )?;
+    let parameters = PyDict::new(py);
+    for (k, v) in params.iter() {
+        parameters.set_item(k, v)?;
+    }
+    out.set_item("parameters", parameters)?;
+    out.set_item("integrator", plan.integrator())?;
+    let (dt, tol) = dt_tol(plan.step);
+    out.set_item("dt", dt)?;
+    out.set_item("tol", tol)?;
+    out.set_item("t_end", plan.t_end)?;
+    out.set_item("every", plan.every)?;
+    out.set_item("at", plan.times.clone())?;
+    out.set_item("steps", summary.steps)?;
+    out.set_item("evaluations", summary.evaluations)?;
+    out.set_item("reached_t", summary.t)?;
+    out.set_item("max_energy_rel_err", summary.max_energy_rel_err)?;
+    out.set_item("version", env!("CARGO_PKG_VERSION"))?;
+    Ok(out)
+}
+
+/// `tumble scenes --json`, as text.
+#[pyfunction]
+pub(crate) fn scenes_json() -> PyResult<String> {
+    let entries = scenes::builtin()
+        .iter()
+        .map(|s| catalog::entry(s.info()))
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(refused)?;
+    serde_json::to_string(&entries).map_err(refused)
+}
+
+/// `tumble integrators --json`, as text.
+#[pyfunction]
+pub(crate) fn integrators_json() -> PyResult<String> {
+    serde_json::to_string(tumble_integrators::registry::methods()).map_err(refused)
+}
+
+/// Work–precision ladders (see the Python docstring of `tumble.work_precision`).
+#[pyfunction]
+#[pyo3(signature = (scene, params=None, integrators=None, t_end=None, max_seconds=0.5))]
+pub(crate) fn work_precision<'py>(
+    py: Python<'py>,
+    scene: &str,
+    params: Option<&Bound<'py, PyDict>>,
+    integrators: Option<Vec<String>>,
+    t_end: Option<f64>,
+    max_seconds: f64,
+) -> PyResult<Bound<'py, PyDict>> {
+    let loaded = load_scene(scene, &overrides(params)?).map_err(refused)?;
+    let info = loaded.scene.info();
+    let integrators = integrators.unwrap_or_else(|| {
+        info.integrators()
+            .iter()
+            .map(|s| (*s).to_string())
+            .collect()
+    });
+    for name in &integrators {
+        if !info.runs(name) {
+            return Err(PyValueError::new_err(format!(
+                "integrators: `{name}` cannot run scene `{}`; applicable: {}",
+                info.name,
+                info.integrators().join(", ")
+            )));
+        }
+    }
+    if !(max_seconds.is_finite() && max_seconds > 0.0) {
+        return Err(PyValueError::new_err(format!(
+            "max_seconds={}: must be finite and positive",
+            number(max_seconds)
+        )));
+    }
+    let t_end = t_end.or(loaded.run.t_end).unwrap_or(info.default_t_end);
+    check_horizon(t_end).map_err(|e| {
+        PyValueError::new_err(format!("{}: {}", info.name, flag_words(&e, Naming::Python)))
+    })?;
+    let mut config = Config::new(info);
+    config.t_end = t_end;
+    config.max_run_seconds = max_seconds;
+    config.max_reference_seconds = 60.0 * max_seconds;
+    let (scene, params) = (loaded.scene, loaded.params);
+    let outcome = interruptible(
+        py,
+        |flag| {
+            let scene = Interruptible { scene, flag };
+            let reference = ladders::reference_within(
+                &scene,
+                &params,
+                t_end,
+                Some(config.max_reference_seconds),
+            )
+            .map_err(|e| format!("{}: the reference run failed: {e}", info.name))?;
+            let mut ladders = Vec::new();
+            for name in &integrators {
+                let ladder = ladders::ladder(
+                    &scene,
+                    &params,
+                    name,
+                    &reference.state,
+                    &config,
+                    &mut |_| {},
+                )
+                .map_err(|e: SceneError| format!("{}: {name}: {e}", info.name))?;
+                ladders.push(ladder);
+            }
+            Ok::<_, String>((reference, ladders))
+        },
+        |_| Ok(()),
+    )?;
+    let (reference, ladders) = outcome.map_err(SimulationError::new_err)?;
+    let out = PyDict::new(py);
+    out.set_item("scene", info.name)?;
+    out.set_item("t_end", t_end)?;
+    out.set_item("reference", &reference.method)?;
+    out.set_item("cross_check", &reference.check)?;
+    out.set_item("agreement", reference.agreement)?;
+    let rungs = PyList::empty(py);
+    for r in ladders.iter().flat_map(|l| &l.rungs) {
+        let row = PyDict::new(py);
+        row.set_item("integrator", &r.integrator)?;
+        let (dt, tol) = dt_tol(r.control);
+        row.set_item("dt", dt)?;
+        row.set_item("tol", tol)?;
+        row.set_item("steps", r.steps)?;
+        row.set_item("evaluations", r.evaluations)?;
+        row.set_item("error", r.error)?;
+        row.set_item("max_energy_rel_err", r.max_energy_rel_err)?;
+        row.set_item("seconds", r.seconds)?;
+        rungs.append(row)?;
+    }
+    out.set_item("rungs", rungs)?;
+    let stops = PyDict::new(py);
+    for l in &ladders {
+        stops.set_item(&l.integrator, &l.stop)?;
+    }
+    out.set_item("stopped", stops)?;
+    Ok(out)
+}
