@@ -15,7 +15,8 @@ use tumble_scenarios::{RunOptions, SceneInfo, StepControl};
 #[derive(clap::Args, Debug)]
 pub struct Args {
     /// Print a JSON array of objects (name, summary, coordinates, columns, parameters,
-    /// conserved, oracle, integrators, default_integrator, default_error, default_dt or
+    /// conserved, oracle, problems, integrators, composition_bases, default_integrator,
+    /// default_error, default_dt or
     /// default_tol, default_t_end) instead of text.
     #[arg(long)]
     pub json: bool,
@@ -43,6 +44,7 @@ struct Entry {
     oracle: &'static str,
     problems: Vec<&'static str>,
     integrators: Vec<&'static str>,
+    composition_bases: Vec<&'static str>,
     default_integrator: &'static str,
     default_error: f64,
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -80,6 +82,7 @@ fn entry(info: &SceneInfo) -> Result<Entry> {
         oracle: info.oracle,
         problems: info.problems.iter().map(|k| k.name()).collect(),
         integrators: info.integrators(),
+        composition_bases: info.composition_bases(),
         default_integrator: info.default_integrator,
         default_error: info.default_error,
         default_dt,
@@ -172,6 +175,12 @@ fn text(entries: &[Entry]) -> String {
             e.default_integrator, e.default_t_end, e.default_error
         );
         out += &format!("  integrators  {}\n", e.integrators.join(", "));
+        if !e.composition_bases.is_empty() {
+            out += &format!(
+                "  compositions TABLE:BASE, BASE one of {} (`tumble integrators` lists them)\n",
+                e.composition_bases.join(", ")
+            );
+        }
     }
     out
 }

@@ -79,11 +79,7 @@ pub fn run(args: &Args) -> Result<()> {
     let info = scene.info();
     for name in &args.integrators {
         if !info.runs(name) {
-            bail!(
-                "--integrators: `{name}` cannot run scene `{}`; applicable: {}",
-                info.name,
-                info.integrators().join(", ")
-            );
+            bail!("--integrators: {}", info.unsupported(name));
         }
     }
     if !(args.max_seconds.is_finite() && args.max_seconds > 0.0) {
