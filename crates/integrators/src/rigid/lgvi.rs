@@ -56,7 +56,7 @@
 //! when the caller changes the state). Multiplying by `F` instead would round its diagonal
 //! `1 − O(|f|²)` the same way at every step of a steady rotation and make `‖RᵀR − 𝟙‖` grow
 //! linearly; as it is, over 10⁶ steps `‖RᵀR − 𝟙‖`, `R Π`, `|Π|` and the energy of a free body
-//! stay within 5e-15.
+//! stay within 8e-15 (`lgvi_long_run` prints them: 6.0e-15, 2.4e-15, 1.1e-15, 7.8e-15).
 //!
 //! # References
 //! - T. Lee, M. Leok, N. H. McClamroch, *A Lie group variational integrator for the attitude
