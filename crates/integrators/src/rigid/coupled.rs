@@ -583,14 +583,14 @@ impl<const N: usize, L: CoupledLagrangian<N> + ?Sized> Stepper<L> for CoupledLgv
                 return Err(failure(iterations, size, state));
             }
             if size >= previous {
-                if !fresh {
-                    // A reused Jacobian that no longer contracts (a large step): evaluate it
-                    // at the current iterate and take a full Newton step from there.
+                converged = previous <= 1e-8;
+                if !fresh && !converged {
+                    // A reused Jacobian that no longer contracts far from the root (a large
+                    // step): evaluate it at the current iterate and take a Newton step from there.
                     jacobian = None;
                     continue;
                 }
                 // Stagnation: the previous iterate was as good as round-off allows.
-                converged = previous <= 1e-8;
                 break;
             }
             w += dw;
