@@ -22,6 +22,7 @@
 //! * **Errors, not NaN.** Coordinate singularities (an ill-conditioned mass matrix) and bad
 //!   parameters are [`ModelError`]s carrying what and where. The library never prints.
 
+mod applicability;
 pub mod body_table;
 pub mod dispatch;
 pub mod error;
