@@ -1,16 +1,21 @@
-//! `tumble integrators`: list every integrator with its name, order, family and properties.
+//! `tumble integrators`: list every integrator with its name, order, family, properties and
+//! the built-in scenes it runs.
 //!
 //! The table comes from `tumble_integrators::registry`; `--json` prints the same entries as a
-//! JSON array.
+//! JSON array (each with its `scenes`). A composition table named alone (`kahan-li8`) composes
+//! Störmer–Verlet and runs scenes with a separable model; `TABLE:BASE` (`kahan-li8:lgvi`)
+//! composes the symmetric order-2 method `BASE` and runs what `BASE` runs.
 
 use anyhow::Result;
+use serde::Serialize;
 use tumble_integrators::registry::{MethodInfo, methods};
+use tumble_scenarios::scenes::builtin;
 
 /// Flags of `tumble integrators`.
 #[derive(clap::Args, Debug)]
 pub struct Args {
     /// Print a JSON array of objects (name, order, family, properties, stages, problem,
-    /// summary) instead of a table.
+    /// problems, summary, scenes) instead of a table.
     #[arg(long)]
     pub json: bool,
 }
@@ -22,11 +27,36 @@ pub struct Args {
 pub fn run(args: &Args) -> Result<()> {
     let all = methods();
     if args.json {
-        println!("{}", serde_json::to_string_pretty(all)?);
+        let entries: Vec<Entry<'_>> = all
+            .iter()
+            .map(|info| Entry {
+                info,
+                scenes: scenes_of(info),
+            })
+            .collect();
+        println!("{}", serde_json::to_string_pretty(&entries)?);
         return Ok(());
     }
     print!("{}", table(all));
     Ok(())
+}
+
+/// A registry entry with the built-in scenes it runs (the JSON form).
+#[derive(Serialize)]
+struct Entry<'a> {
+    #[serde(flatten)]
+    info: &'a MethodInfo,
+    scenes: Vec<&'static str>,
+}
+
+/// The built-in scenes the method runs, in `tumble scenes` order.
+fn scenes_of(m: &MethodInfo) -> Vec<&'static str> {
+    builtin()
+        .iter()
+        .map(|s| s.info())
+        .filter(|info| info.runs(m.name))
+        .map(|info| info.name)
+        .collect()
 }
 
 fn flags(m: &MethodInfo) -> String {
@@ -52,26 +82,32 @@ fn flags(m: &MethodInfo) -> String {
 
 /// The human-readable table.
 fn table(all: &[MethodInfo]) -> String {
-    let rows: Vec<[String; 5]> = all
+    let rows: Vec<[String; 6]> = all
         .iter()
         .map(|m| {
+            let scenes = scenes_of(m);
             [
                 m.name.to_owned(),
                 m.order.to_string(),
                 m.stages.to_string(),
                 m.family.name().to_owned(),
                 flags(m),
+                if scenes.is_empty() {
+                    "(none built in)".to_owned()
+                } else {
+                    scenes.join(", ")
+                },
             ]
         })
         .collect();
-    let header = ["name", "order", "stages", "family", "properties"];
+    let header = ["name", "order", "stages", "family", "properties", "scenes"];
     let mut widths = header.map(str::len);
     for r in &rows {
         for (w, c) in widths.iter_mut().zip(r) {
             *w = (*w).max(c.chars().count());
         }
     }
-    let line = |cells: [&str; 5]| {
+    let line = |cells: [&str; 6]| {
         let mut s = String::new();
         for (i, (c, w)) in cells.iter().zip(widths).enumerate() {
             if i + 1 == cells.len() {
@@ -84,7 +120,7 @@ fn table(all: &[MethodInfo]) -> String {
     };
     let mut out = line(header);
     for r in &rows {
-        out += &line([&r[0], &r[1], &r[2], &r[3], &r[4]]);
+        out += &line([&r[0], &r[1], &r[2], &r[3], &r[4], &r[5]]);
     }
     out
 }
@@ -102,5 +138,19 @@ mod tests {
         assert!(gauss12.contains(" 12 ") && gauss12.contains("implicit, symplectic, symmetric"));
         let kl8 = t.lines().find(|l| l.starts_with("kahan-li8 ")).unwrap();
         assert!(kl8.contains("composition"));
+    }
+
+    #[test]
+    fn scenes_column_follows_each_scenes_problem_kinds() {
+        // A table named alone composes Verlet (separable models only); composed with the LGVI
+        // it runs every SO(3) scene, and with the implicit midpoint every scene with an ODE.
+        let scenes = |name| scenes_of(tumble_integrators::registry::find(name).unwrap());
+        assert!(!scenes("kahan-li8").contains(&"free-body"));
+        for s in ["free-body", "dzhanibekov", "heavy-top", "free-hoop"] {
+            assert!(scenes("kahan-li8:lgvi").contains(&s), "{s}");
+        }
+        assert!(!scenes("kahan-li8:split2").contains(&"free-hoop"));
+        assert_eq!(scenes("kahan-li8:gauss2"), scenes("gauss2"));
+        assert_eq!(scenes("kahan-li8:lgvi"), scenes("lgvi8"));
     }
 }

@@ -14,7 +14,8 @@ use tumble_studies::catalog::{Entry, entry};
 #[derive(clap::Args, Debug)]
 pub struct Args {
     /// Print a JSON array of objects (name, summary, coordinates, columns, parameters,
-    /// conserved, oracle, integrators, default_integrator, default_error, default_dt or
+    /// conserved, oracle, problems, integrators, composition_bases, default_integrator,
+    /// default_error, default_dt or
     /// default_tol, default_t_end) instead of text.
     #[arg(long)]
     pub json: bool,
@@ -108,6 +109,12 @@ fn text(entries: &[Entry]) -> String {
             e.default_integrator, e.default_t_end, e.default_error
         );
         out += &format!("  integrators  {}\n", e.integrators.join(", "));
+        if !e.composition_bases.is_empty() {
+            out += &format!(
+                "  compositions TABLE:BASE, BASE one of {} (`tumble integrators` lists them)\n",
+                e.composition_bases.join(", ")
+            );
+        }
     }
     out
 }

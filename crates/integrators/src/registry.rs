@@ -6,6 +6,18 @@
 //! [`MethodInfo`] to [`METHODS`]; the registry tests check that names are unique and lowercase
 //! and that every composition and Gauss table is listed.
 //!
+//! # Compositions of a scene's base method
+//!
+//! A composition table (`yoshida4` … `sofroniou-spaletta10`) named alone composes Störmer–Verlet
+//! and needs a separable Hamiltonian. Composed with another symmetric method of order 2 — a
+//! *base* of [`BASES`]: `lgvi` (rigid bodies, coupled rigid bodies), `split2` (rigid bodies),
+//! `gauss2`, the implicit midpoint rule (any first-order ODE) — it is named `TABLE:BASE`
+//! (`kahan-li8:lgvi`, `yoshida6:split2`, `mclachlan4:gauss2`) and runs every problem its base
+//! runs, at the table's order. The short names `lgvi4` … `lgvi10` and `split4` … `split8` are
+//! the same methods as `mclachlan4:lgvi`, `kahan-li6:lgvi`, `kahan-li8:lgvi`,
+//! `sofroniou-spaletta10:lgvi` and `mclachlan4:split2` … `kahan-li8:split2`; [`composed`] splits
+//! a `TABLE:BASE` name into its table and base.
+//!
 //! # Order
 //!
 //! [`Order`] is a finite order `p` (global error `O(hᵖ)`) or [`Order::Exact`] for a method with
@@ -15,7 +27,7 @@
 
 use serde::{Serialize, Serializer};
 
-use crate::tables::composition;
+use crate::tables::{CompositionTable, composition};
 
 /// Family of a method.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -282,10 +294,76 @@ const fn composition_entry(
         family: Family::Composition,
         properties: SYMPLECTIC_EXPLICIT,
         stages: table.gammas.len() as u32,
-        problem: "any symmetric order-2 base stepper (default: Störmer–Verlet on a separable Hamiltonian)",
+        problem: "separable Hamiltonian H = T(p) + V(q), whose Störmer–Verlet the table composes",
         problems: &[ProblemKind::Separable],
         summary,
     }
+}
+
+/// A symmetric method of order 2 that the composition tables compose (`TABLE:BASE`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Base {
+    /// The base's registry name.
+    pub name: &'static str,
+    /// What a composition of it needs of the problem, in words.
+    pub problem: &'static str,
+    /// The kinds of problem it integrates (and so its compositions).
+    pub problems: &'static [ProblemKind],
+    /// Its properties, which its compositions share.
+    pub properties: Properties,
+    /// What its compositions are, in one line.
+    pub summary: &'static str,
+}
+
+const LGVI_BASE: Base = Base {
+    name: "lgvi",
+    problem: RIGID_BODY,
+    problems: &[ProblemKind::RigidBody, ProblemKind::CoupledRigidBody],
+    properties: LIE_VARIATIONAL,
+    summary: "the table before the colon composing the LGVI (Lee, Leok & McClamroch 2005)",
+};
+const SPLIT2_BASE: Base = Base {
+    name: "split2",
+    problem: RIGID_BODY,
+    problems: &[ProblemKind::RigidBody],
+    properties: LIE_SYMPLECTIC_EXPLICIT,
+    summary: "the table before the colon composing split2, the principal-axis splitting",
+};
+const GAUSS2_BASE: Base = Base {
+    name: "gauss2",
+    problem: "first-order ODE y' = f(t, y)",
+    problems: &[ProblemKind::Ode],
+    properties: GAUSS,
+    summary: "the table before the colon composing gauss2, the implicit midpoint rule",
+};
+
+/// The symmetric order-2 methods that `TABLE:BASE` names compose.
+pub const BASES: [Base; 3] = [LGVI_BASE, SPLIT2_BASE, GAUSS2_BASE];
+
+const fn composed_entry(
+    name: &'static str,
+    table: &'static CompositionTable,
+    base: Base,
+) -> MethodInfo {
+    MethodInfo {
+        name,
+        order: Order::Finite(table.order),
+        family: Family::Composition,
+        properties: base.properties,
+        stages: table.gammas.len() as u32,
+        problem: base.problem,
+        problems: base.problems,
+        summary: base.summary,
+    }
+}
+
+/// The table and the base of a `TABLE:BASE` name (`kahan-li8:lgvi`), `None` for any other name.
+#[must_use]
+pub fn composed(name: &str) -> Option<(&'static CompositionTable, &'static Base)> {
+    let (table, base) = name.split_once(':')?;
+    let table = composition::ALL.into_iter().find(|t| t.name == table)?;
+    let base = BASES.iter().find(|b| b.name == base)?;
+    Some((table, base))
 }
 
 const fn gauss_entry(name: &'static str, stages: u32) -> MethodInfo {
@@ -553,6 +631,42 @@ pub const METHODS: &[MethodInfo] = &[
         problems: &[ProblemKind::FreeRigidBody],
         summary: "exact free-rigid-body flow: Jacobi elliptic functions and Carlson's R_J (Celledoni, Fassò, Säfström & Zanna 2008, corrected)",
     },
+    composed_entry("yoshida4:lgvi", &composition::YOSHIDA4, LGVI_BASE),
+    composed_entry("yoshida6:lgvi", &composition::YOSHIDA6, LGVI_BASE),
+    composed_entry("yoshida8:lgvi", &composition::YOSHIDA8, LGVI_BASE),
+    composed_entry("suzuki4:lgvi", &composition::SUZUKI4, LGVI_BASE),
+    composed_entry("mclachlan4:lgvi", &composition::MCLACHLAN4, LGVI_BASE),
+    composed_entry("kahan-li6:lgvi", &composition::KAHAN_LI6, LGVI_BASE),
+    composed_entry("kahan-li8:lgvi", &composition::KAHAN_LI8, LGVI_BASE),
+    composed_entry(
+        "sofroniou-spaletta10:lgvi",
+        &composition::SOFRONIOU_SPALETTA10,
+        LGVI_BASE,
+    ),
+    composed_entry("yoshida4:split2", &composition::YOSHIDA4, SPLIT2_BASE),
+    composed_entry("yoshida6:split2", &composition::YOSHIDA6, SPLIT2_BASE),
+    composed_entry("yoshida8:split2", &composition::YOSHIDA8, SPLIT2_BASE),
+    composed_entry("suzuki4:split2", &composition::SUZUKI4, SPLIT2_BASE),
+    composed_entry("mclachlan4:split2", &composition::MCLACHLAN4, SPLIT2_BASE),
+    composed_entry("kahan-li6:split2", &composition::KAHAN_LI6, SPLIT2_BASE),
+    composed_entry("kahan-li8:split2", &composition::KAHAN_LI8, SPLIT2_BASE),
+    composed_entry(
+        "sofroniou-spaletta10:split2",
+        &composition::SOFRONIOU_SPALETTA10,
+        SPLIT2_BASE,
+    ),
+    composed_entry("yoshida4:gauss2", &composition::YOSHIDA4, GAUSS2_BASE),
+    composed_entry("yoshida6:gauss2", &composition::YOSHIDA6, GAUSS2_BASE),
+    composed_entry("yoshida8:gauss2", &composition::YOSHIDA8, GAUSS2_BASE),
+    composed_entry("suzuki4:gauss2", &composition::SUZUKI4, GAUSS2_BASE),
+    composed_entry("mclachlan4:gauss2", &composition::MCLACHLAN4, GAUSS2_BASE),
+    composed_entry("kahan-li6:gauss2", &composition::KAHAN_LI6, GAUSS2_BASE),
+    composed_entry("kahan-li8:gauss2", &composition::KAHAN_LI8, GAUSS2_BASE),
+    composed_entry(
+        "sofroniou-spaletta10:gauss2",
+        &composition::SOFRONIOU_SPALETTA10,
+        GAUSS2_BASE,
+    ),
 ];
 
 /// Every method.

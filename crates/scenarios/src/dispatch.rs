@@ -16,8 +16,13 @@
 //! | [`ProblemKind::FreeRigidBody`] | [`FreeRigidBody`] | discrete Moser–Veselov, the exact flow |
 //! | [`ProblemKind::LieVectorField`] | Euler's equations as a vector field on SO(3) × ℝ³ | RKMK, Crouch–Grossman |
 //! | [`ProblemKind::CoupledRigidBody`] | [`CoupledLagrangian`] on SO(3) × ℝⁿ | the coupled LGVI and its compositions (orders 4–10) |
+//!
+//! A `TABLE:BASE` name ([`registry::composed`]) is the composition table applied to the base
+//! stepper, built here from the table and the base's arm: `lgvi` and `split2` on a rigid body,
+//! `lgvi` on a coupled one, `gauss2` on a first-order ODE.
 
 use nalgebra::SVector;
+use tumble_integrators::registry;
 use tumble_integrators::rigid::{
     CoupledLagrangian, CoupledLgvi, CoupledState, Dmv, EulerEquations, ExactSplitting,
     ExactStepper, FreeRigidBody, GroupState, Lgvi, PrincipalAxisSplitting, RigidBody,
@@ -25,8 +30,8 @@ use tumble_integrators::rigid::{
     lgvi8, lgvi10, rkmk4, split4, split6, split8,
 };
 use tumble_integrators::{
-    Event, ExplicitRungeKutta, Observer, Ode, Order, ProblemKind, Report, Restepped, State,
-    Stepper, Tolerances, gauss2, gauss4, gauss6, gauss8, gauss10, gauss12,
+    Composition, Event, ExplicitRungeKutta, Observer, Ode, Order, ProblemKind, Report, Restepped,
+    State, Stepper, Tolerances, gauss2, gauss4, gauss6, gauss8, gauss10, gauss12,
 };
 
 use crate::error::SceneError;
@@ -51,7 +56,8 @@ fn no_stepper(plan: &RunPlan, kind: &str) -> SceneError {
     SceneError::UnsupportedIntegrator {
         scene: String::new(),
         name: plan.integrator().to_string(),
-        applicable: format!("(no stepper for a {kind} problem)"),
+        reason: format!("no stepper for it on a {kind} problem"),
+        applicable: String::new(),
     }
 }
 
@@ -127,14 +133,24 @@ where
                     }
                 }};
             }
-            match name {
-                "rk4" => fixed!(ExplicitRungeKutta::rk4().stepper(y)),
-                "gauss2" => fixed!(gauss2().stepper(y)),
-                "gauss4" => fixed!(gauss4().stepper(y)),
-                "gauss6" => fixed!(gauss6().stepper(y)),
-                "gauss8" => fixed!(gauss8().stepper(y)),
-                "gauss10" => fixed!(gauss10().stepper(y)),
-                "gauss12" => fixed!(gauss12().stepper(y)),
+            match (name, registry::composed(name)) {
+                (_, Some((table, base))) if base.name == "gauss2" => {
+                    let stepper = Composition::new(table, gauss2().stepper(y));
+                    if events.is_empty() && plan.times.is_none() && !observer.wants_dense_steps() {
+                        driver.run_fixed(&mut stepper.clone(), &counted, y, h, observer)?
+                    } else {
+                        let mut dense = Restepped::new(stepper, interpolation_order(plan));
+                        driver
+                            .run_fixed_with_events(&mut dense, &counted, y, h, events, observer)?
+                    }
+                }
+                ("rk4", _) => fixed!(ExplicitRungeKutta::rk4().stepper(y)),
+                ("gauss2", _) => fixed!(gauss2().stepper(y)),
+                ("gauss4", _) => fixed!(gauss4().stepper(y)),
+                ("gauss6", _) => fixed!(gauss6().stepper(y)),
+                ("gauss8", _) => fixed!(gauss8().stepper(y)),
+                ("gauss10", _) => fixed!(gauss10().stepper(y)),
+                ("gauss12", _) => fixed!(gauss12().stepper(y)),
                 _ => return Err(no_stepper(plan, "first-order ODE")),
             }
         }
@@ -170,26 +186,36 @@ where
             (report.t, report.steps)
         }};
     }
-    let (t, steps) = match (plan.kind, plan.integrator(), free) {
-        (ProblemKind::RigidBody, "lgvi", _) => on!(body, Lgvi::new()),
-        (ProblemKind::RigidBody, "lgvi4", _) => on!(body, lgvi4()),
-        (ProblemKind::RigidBody, "lgvi6", _) => on!(body, lgvi6()),
-        (ProblemKind::RigidBody, "lgvi8", _) => on!(body, lgvi8()),
-        (ProblemKind::RigidBody, "lgvi10", _) => on!(body, lgvi10()),
-        (ProblemKind::RigidBody, "split2", _) => on!(body, PrincipalAxisSplitting::new()),
-        (ProblemKind::RigidBody, "split4", _) => on!(body, split4()),
-        (ProblemKind::RigidBody, "split6", _) => on!(body, split6()),
-        (ProblemKind::RigidBody, "split8", _) => on!(body, split8()),
-        (ProblemKind::RigidBody, "split-exact2", _) => on!(body, ExactSplitting::new()),
-        (ProblemKind::FreeRigidBody, "dmv", Some(free)) => on!(free, Dmv::new()),
-        (ProblemKind::FreeRigidBody, "exact", Some(free)) => on!(free, ExactStepper::new()),
-        (ProblemKind::LieVectorField, "rkmk4", _) => {
-            on!(&EulerEquations(*body), OnRigidBody(rkmk4::<3>()))
+    let (t, steps) = if let Some((table, base)) = registry::composed(plan.integrator()) {
+        match (plan.kind, base.name) {
+            (ProblemKind::RigidBody, "lgvi") => on!(body, Composition::new(table, Lgvi::new())),
+            (ProblemKind::RigidBody, "split2") => {
+                on!(body, Composition::new(table, PrincipalAxisSplitting::new()))
+            }
+            (kind, _) => return Err(no_stepper(plan, kind.name())),
         }
-        (ProblemKind::LieVectorField, "cg3", _) => {
-            on!(&EulerEquations(*body), OnRigidBody(cg3::<3>()))
+    } else {
+        match (plan.kind, plan.integrator(), free) {
+            (ProblemKind::RigidBody, "lgvi", _) => on!(body, Lgvi::new()),
+            (ProblemKind::RigidBody, "lgvi4", _) => on!(body, lgvi4()),
+            (ProblemKind::RigidBody, "lgvi6", _) => on!(body, lgvi6()),
+            (ProblemKind::RigidBody, "lgvi8", _) => on!(body, lgvi8()),
+            (ProblemKind::RigidBody, "lgvi10", _) => on!(body, lgvi10()),
+            (ProblemKind::RigidBody, "split2", _) => on!(body, PrincipalAxisSplitting::new()),
+            (ProblemKind::RigidBody, "split4", _) => on!(body, split4()),
+            (ProblemKind::RigidBody, "split6", _) => on!(body, split6()),
+            (ProblemKind::RigidBody, "split8", _) => on!(body, split8()),
+            (ProblemKind::RigidBody, "split-exact2", _) => on!(body, ExactSplitting::new()),
+            (ProblemKind::FreeRigidBody, "dmv", Some(free)) => on!(free, Dmv::new()),
+            (ProblemKind::FreeRigidBody, "exact", Some(free)) => on!(free, ExactStepper::new()),
+            (ProblemKind::LieVectorField, "rkmk4", _) => {
+                on!(&EulerEquations(*body), OnRigidBody(rkmk4::<3>()))
+            }
+            (ProblemKind::LieVectorField, "cg3", _) => {
+                on!(&EulerEquations(*body), OnRigidBody(cg3::<3>()))
+            }
+            (kind, _, _) => return Err(no_stepper(plan, kind.name())),
         }
-        (kind, _, _) => return Err(no_stepper(plan, kind.name())),
     };
     Ok(Outcome {
         t,
@@ -219,13 +245,17 @@ where
             run_fixed($stepper, model, state, plan, observer)?
         };
     }
-    let report = match (plan.kind, plan.integrator()) {
-        (ProblemKind::CoupledRigidBody, "lgvi") => on!(CoupledLgvi::<N>::new()),
-        (ProblemKind::CoupledRigidBody, "lgvi4") => on!(coupled_lgvi4::<N>()),
-        (ProblemKind::CoupledRigidBody, "lgvi6") => on!(coupled_lgvi6::<N>()),
-        (ProblemKind::CoupledRigidBody, "lgvi8") => on!(coupled_lgvi8::<N>()),
-        (ProblemKind::CoupledRigidBody, "lgvi10") => on!(coupled_lgvi10::<N>()),
-        (kind, _) => return Err(no_stepper(plan, kind.name())),
+    let composed = registry::composed(plan.integrator()).map(|(table, base)| (table, base.name));
+    let report = match (plan.kind, plan.integrator(), composed) {
+        (ProblemKind::CoupledRigidBody, _, Some((table, "lgvi"))) => {
+            on!(Composition::new(table, CoupledLgvi::<N>::new()))
+        }
+        (ProblemKind::CoupledRigidBody, "lgvi", _) => on!(CoupledLgvi::<N>::new()),
+        (ProblemKind::CoupledRigidBody, "lgvi4", _) => on!(coupled_lgvi4::<N>()),
+        (ProblemKind::CoupledRigidBody, "lgvi6", _) => on!(coupled_lgvi6::<N>()),
+        (ProblemKind::CoupledRigidBody, "lgvi8", _) => on!(coupled_lgvi8::<N>()),
+        (ProblemKind::CoupledRigidBody, "lgvi10", _) => on!(coupled_lgvi10::<N>()),
+        (kind, _, _) => return Err(no_stepper(plan, kind.name())),
     };
     Ok(Outcome {
         t: report.t,

@@ -122,12 +122,14 @@ pub enum SceneError {
         requirement: &'static str,
     },
     /// The integrator does not exist or does not apply to this scene.
-    #[error("integrator `{name}` cannot run scene `{scene}`; applicable: {applicable}")]
+    #[error("integrator `{name}` cannot run scene `{scene}`: {reason}; applicable: {applicable}")]
     UnsupportedIntegrator {
         /// The scene.
         scene: String,
         /// The integrator asked for.
         name: String,
+        /// Why not: what the method needs and what the scene offers.
+        reason: String,
         /// The integrators that apply.
         applicable: String,
     },

@@ -51,6 +51,7 @@
 //! # Ok::<(), tumble_scenarios::SceneError>(())
 //! ```
 
+mod applicability;
 pub mod body_table;
 pub mod dispatch;
 pub mod display;

@@ -91,20 +91,15 @@ impl SceneInfo {
             .find(|k| method.problems.contains(k))
     }
 
-    /// Every registry method that runs this scene, in registry order.
+    /// Every registry method that runs this scene, in registry order, but for the `TABLE:BASE`
+    /// compositions ([`Self::compositions`]; the short names `lgvi4` …, `split4` … are listed).
     #[must_use]
     pub fn integrators(&self) -> Vec<&'static str> {
         registry::methods()
             .iter()
-            .filter(|m| self.kind_for(m).is_some())
+            .filter(|m| registry::composed(m.name).is_none() && self.kind_for(m).is_some())
             .map(|m| m.name)
             .collect()
-    }
-
-    /// Whether the method called `name` runs this scene.
-    #[must_use]
-    pub fn runs(&self, name: &str) -> bool {
-        registry::find(name).is_ok_and(|m| self.kind_for(m).is_some())
     }
 }
 
@@ -267,11 +262,7 @@ impl RunOptions {
             .integrator
             .as_deref()
             .unwrap_or(info.default_integrator);
-        let unsupported = || SceneError::UnsupportedIntegrator {
-            scene: info.name.to_string(),
-            name: name.to_string(),
-            applicable: info.integrators().join(", "),
-        };
+        let unsupported = || info.unsupported(name);
         let method = registry::find(name).map_err(|_| unsupported())?;
         let kind = info.kind_for(method).ok_or_else(unsupported)?;
         let adaptive = method.properties.adaptive;

@@ -43,6 +43,8 @@ pub struct Entry {
     pub problems: Vec<&'static str>,
     /// Applicable integrators.
     pub integrators: Vec<&'static str>,
+    /// Its symmetric order-2 base methods, which a composition table composes as `TABLE:BASE`.
+    pub composition_bases: Vec<&'static str>,
     /// Integrator of the default run.
     pub default_integrator: &'static str,
     /// Error of the default run against the reference.
@@ -87,6 +89,7 @@ pub fn entry(info: &SceneInfo) -> Result<Entry, SceneError> {
         oracle: info.oracle,
         problems: info.problems.iter().map(|k| k.name()).collect(),
         integrators: info.integrators(),
+        composition_bases: info.composition_bases(),
         default_integrator: info.default_integrator,
         default_error: info.default_error,
         default_dt,

@@ -211,6 +211,9 @@ pub struct Rung {
     pub repeats: usize,
 }
 
+/// Above this error a rung is coarse: a failure there does not end the ladder.
+const COARSE_ERROR: f64 = 1e-4;
+
 /// A rung that failed (a step too large for an implicit solver to converge, say).
 #[derive(Debug, Clone, PartialEq)]
 pub struct FailedRung {
@@ -567,7 +570,9 @@ pub fn ladder(
                 );
                 break;
             }
-            if out.rungs.is_empty() && k < 40 {
+            // A coarse rung may fail where a finer one converges (an implicit solve at a step
+            // that turns the body by a radian): the ladder goes on while no rung is accurate.
+            if k < 40 && (out.rungs.is_empty() || best > COARSE_ERROR) {
                 continue;
             }
             out.stop = "a run failed".into();

@@ -250,8 +250,9 @@ pub(crate) struct RigidCarry {
 }
 
 impl RigidCarry {
-    /// Forgets the carries unless `(t, state)` is the last output.
-    pub(crate) fn prepare(&mut self, t: f64, state: &RigidBodyState) {
+    /// Forgets the carries unless `(t, state)` is the last output; whether it is (the step
+    /// continues the last one, so data kept from it, such as the moment at its end, apply).
+    pub(crate) fn prepare(&mut self, t: f64, state: &RigidBodyState) -> bool {
         let continues = self
             .last
             .as_ref()
@@ -259,18 +260,21 @@ impl RigidCarry {
         if !continues {
             *self = Self::default();
         }
+        continues
     }
 
-    /// `R ← R + ΔR`, `m ← m + Δm` (compensated); remembers the result as the output at `t`.
-    pub(crate) fn apply(
+    /// `R ← R + ΔR`, then `m ← m + Δm(R)` with `Δm` computed from the updated rotation
+    /// (compensated sums); remembers the result as the output at `t`.
+    pub(crate) fn apply_with(
         &mut self,
         t: f64,
         state: &mut RigidBodyState,
         d_rotation: &Matrix3<f64>,
-        d_momentum: &Vector3<f64>,
+        d_momentum: impl FnOnce(&Matrix3<f64>) -> Vector3<f64>,
     ) {
         compensated_add_all(&mut state.rotation, d_rotation, &mut self.rotation);
-        compensated_add_all(&mut state.momentum, d_momentum, &mut self.momentum);
+        let dm = d_momentum(&state.rotation);
+        compensated_add_all(&mut state.momentum, &dm, &mut self.momentum);
         self.last = Some((t, *state));
     }
 

@@ -4,6 +4,7 @@
 mod support;
 
 mod body_scenes;
+mod compositions;
 mod coriolis_drop;
 mod driven_hoop;
 mod free_hoop;

@@ -60,12 +60,14 @@ pub struct Method {
 }
 
 impl Method {
-    /// Parses `NAME`, `NAME:dt=H` or `NAME:tol=T`.
+    /// Parses `NAME`, `NAME:dt=H` or `NAME:tol=T` (`NAME` may itself hold a colon, as a
+    /// composition `TABLE:BASE` does: the setting is the part after the last colon when it
+    /// holds `=`).
     ///
     /// # Errors
     /// An unknown integrator or a malformed setting.
     pub fn parse(spec: &str) -> Result<Self, String> {
-        let (name, setting) = match spec.split_once(':') {
+        let (name, setting) = match spec.rsplit_once(':').filter(|(_, s)| s.contains('=')) {
             None => (spec.trim(), None),
             Some((name, setting)) => {
                 let (key, value) = setting
