@@ -54,7 +54,27 @@ enum Command {
     WorkPrecision(cmd::work_precision::Args),
 }
 
+/// Ends the process quietly when standard output was closed by its reader (`tumble scenes |
+/// head`): the reader took what it wanted, which is not an error. Report commands print with
+/// `println!`, which panics on a failed write; every other panic keeps the default report.
+fn quiet_on_closed_stdout() {
+    let default = std::panic::take_hook();
+    std::panic::set_hook(Box::new(move |info| {
+        let message = info
+            .payload()
+            .downcast_ref::<String>()
+            .map(String::as_str)
+            .or_else(|| info.payload().downcast_ref::<&str>().copied())
+            .unwrap_or("");
+        if message.starts_with("failed printing to stdout") && message.contains("os error 32") {
+            std::process::exit(0);
+        }
+        default(info);
+    }));
+}
+
 fn main() -> ExitCode {
+    quiet_on_closed_stdout();
     // The matches are kept for `inertia`, whose placement flags belong to the `--shape` they
     // follow.
     let matches = Cli::command().get_matches();

@@ -168,3 +168,31 @@ fn a_sweep_whose_result_file_is_a_directory_is_refused_before_the_points() {
     assert!(err.contains("results.csv: is a directory"), "{err}");
     assert_eq!(entries(&tmp.path().join("map")), ["results.csv"]);
 }
+
+/// Every report command whose reader has gone (`tumble scenes | head -1`, the read end closed
+/// before a byte is written) ends quietly with success, not with a panic.
+#[test]
+fn report_commands_end_quietly_when_the_reader_closes_stdout() {
+    let dir = tempfile::tempdir().unwrap();
+    let commands: [&[&str]; 6] = [
+        &["scenes"],
+        &["scenes", "--json"],
+        &["integrators"],
+        &["integrators", "--json"],
+        &["inertia", "--shape", "box:1,2,3", "--mass", "1"],
+        &["kinematics", "--angles", "0.3,1.1,-2", "--rates", "1,0.5,4"],
+    ];
+    for args in commands {
+        let (reader, writer) = std::io::pipe().unwrap();
+        drop(reader);
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_tumble"))
+            .current_dir(dir.path())
+            .args(args)
+            .stdout(writer)
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(!err.contains("panicked"), "{args:?}: {err}");
+        assert!(out.status.success(), "{args:?}: {:?} {err}", out.status);
+    }
+}
