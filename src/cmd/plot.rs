@@ -59,6 +59,10 @@ pub struct Args {
     /// A sweep map: colour by the base-10 logarithm of the metric.
     #[arg(long = "log-colour")]
     pub log_colour: bool,
+    /// A sweep map: its colour map (cividis reads the same with a red–green colour-vision
+    /// deficiency; grey prints in black and white).
+    #[arg(long = "colour-map", value_enum, default_value = "viridis")]
+    pub colour_map: crate::plot::colour::ColourMap,
     #[command(flatten)]
     pub style: FigureArgs,
 }
@@ -101,6 +105,7 @@ pub fn run(args: &Args) -> Result<()> {
                 metric,
                 slices: args.slices,
                 log_colour: args.log_colour,
+                colour_map: args.colour_map,
             };
             let Some(figures) = plot::sweep::figures(&def, &rows, &choice) else {
                 bail!(

@@ -66,6 +66,8 @@ pub struct Heatmap {
     pub y_log: bool,
     /// Colour by `log10` of the value (values `≤ 0` are drawn as missing).
     pub value_log: bool,
+    /// The colour map.
+    pub colour_map: colour::ColourMap,
     /// Width and height in pixels.
     pub size: (u32, u32),
 }
@@ -296,7 +298,7 @@ impl Figure for Heatmap {
             let (xe, ye) = (&xe, &ye);
             row.iter().enumerate().map(move |(i, v)| {
                 let colour = match self.tone(*v) {
-                    Some(v) => colour::viridis((v - lo) / (hi - lo)),
+                    Some(v) => self.colour_map.at((v - lo) / (hi - lo)),
                     None => MISSING,
                 };
                 Rectangle::new([(xe[i], ye[j]), (xe[i + 1], ye[j + 1])], colour.filled())
@@ -383,7 +385,7 @@ impl Figure for Heatmap {
             let (a, b) = (k as f64 / steps as f64, (k + 1) as f64 / steps as f64);
             Rectangle::new(
                 [(0.0, lo + a * (hi - lo)), (1.0, lo + b * (hi - lo))],
-                colour::viridis(0.5 * (a + b)).filled(),
+                self.colour_map.at(0.5 * (a + b)).filled(),
             )
         }))?;
         // The bar's label, written upward beside it, and the meaning of grey cells.
@@ -446,6 +448,7 @@ mod tests {
             x_log: false,
             y_log: false,
             value_log: false,
+            colour_map: colour::ColourMap::Viridis,
             size: (700, 500),
         }
     }

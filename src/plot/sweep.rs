@@ -56,6 +56,8 @@ pub(crate) struct Choice {
     pub slices: usize,
     /// Colour the map on a base-10 logarithmic scale.
     pub log_colour: bool,
+    /// The map's colour map.
+    pub colour_map: super::colour::ColourMap,
 }
 
 impl Default for Choice {
@@ -64,6 +66,7 @@ impl Default for Choice {
             metric: 0,
             slices: 5,
             log_colour: false,
+            colour_map: super::colour::ColourMap::Viridis,
         }
     }
 }
@@ -177,6 +180,7 @@ pub(crate) fn figures(
             x_log: x_axis.is_log(),
             y_log: y_axis.is_log(),
             value_log: choice.log_colour,
+            colour_map: choice.colour_map,
             size: (1000, 720),
         }
     });

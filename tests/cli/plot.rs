@@ -6,7 +6,7 @@ use std::path::Path;
 
 use tempfile::TempDir;
 
-use crate::support::{succeeds, tumble_in};
+use crate::support::{stderr, succeeds, tumble_in};
 use crate::sweep::{small, write_sweep};
 
 fn read(path: &Path) -> String {
@@ -392,4 +392,56 @@ fn the_overlap_measure_sees_a_curve_through_a_legend() {
     assert!(covered_points(svg) > 0);
     let clear = svg.replace("0,300 2000,300", "0,700 2000,700");
     assert_eq!(covered_points(&clear), 0);
+}
+
+/// The distinct `fill="#rrggbb"` colours of an SVG.
+fn fills(svg: &str) -> std::collections::BTreeSet<(u8, u8, u8)> {
+    svg.split("fill=\"#")
+        .skip(1)
+        .filter_map(|rest| {
+            let hex = rest.get(..6)?;
+            let byte = |i: usize| u8::from_str_radix(&hex[i..i + 2], 16).ok();
+            Some((byte(0)?, byte(2)?, byte(4)?))
+        })
+        .collect()
+}
+
+#[test]
+fn a_sweep_map_is_drawn_in_the_colour_map_asked_for() {
+    let tmp = TempDir::new().unwrap();
+    let file = write_sweep(tmp.path(), "small.sweep.toml", &small(0.5, 4));
+    succeeds(tmp.path(), &["sweep", file.to_str().unwrap(), "-o", "s"]);
+    succeeds(tmp.path(), &["plot", "s", "-o", "viridis.svg"]);
+    succeeds(
+        tmp.path(),
+        &["plot", "s", "--colour-map", "grey", "-o", "grey.svg"],
+    );
+    let greys = |set: &std::collections::BTreeSet<(u8, u8, u8)>| {
+        set.iter()
+            .filter(|&&(r, g, b)| r == g && g == b && r > 0 && r < 0xe7)
+            .count()
+    };
+    let viridis = fills(&read(&tmp.path().join("viridis.svg")));
+    let grey = fills(&read(&tmp.path().join("grey.svg")));
+    // The cells and the colour bar's steps are greys in the grey map; viridis has no greys of
+    // its own (what greys it has are the figure's frame and text, in both).
+    assert!(greys(&grey) >= 10, "{grey:?}");
+    assert!(
+        greys(&viridis) < greys(&grey),
+        "viridis {viridis:?} grey {grey:?}"
+    );
+    // The same plot in cividis differs from both; an unknown map is refused before any work.
+    succeeds(
+        tmp.path(),
+        &["plot", "s", "--colour-map", "cividis", "-o", "cividis.svg"],
+    );
+    let cividis = read(&tmp.path().join("cividis.svg"));
+    assert_ne!(cividis, read(&tmp.path().join("viridis.svg")));
+    let out = tumble_in(
+        tmp.path(),
+        &["plot", "s", "--colour-map", "rainbow", "-o", "r.svg"],
+    );
+    assert!(!out.status.success());
+    assert!(stderr(&out).contains("cividis"), "{}", stderr(&out));
+    assert!(!tmp.path().join("r.svg").exists());
 }
