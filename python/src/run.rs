@@ -196,7 +196,7 @@ pub(crate) fn scenes_json() -> PyResult<String> {
 /// `tumble integrators --json`, as text.
 #[pyfunction]
 pub(crate) fn integrators_json() -> PyResult<String> {
-    serde_json::to_string(tumble_integrators::registry::methods()).map_err(refused)
+    serde_json::to_string(&tumble_studies::catalog::integrators()).map_err(refused)
 }
 
 /// Work–precision ladders (see the Python docstring of `tumble.work_precision`).

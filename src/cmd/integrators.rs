@@ -7,9 +7,8 @@
 //! composes the symmetric order-2 method `BASE` and runs what `BASE` runs.
 
 use anyhow::Result;
-use serde::Serialize;
 use tumble_integrators::registry::{MethodInfo, methods};
-use tumble_scenarios::scenes::builtin;
+use tumble_studies::catalog::{self, scenes_running as scenes_of};
 
 /// Flags of `tumble integrators`.
 #[derive(clap::Args, Debug)]
@@ -25,38 +24,12 @@ pub struct Args {
 /// # Errors
 /// Only if JSON serialization fails.
 pub fn run(args: &Args) -> Result<()> {
-    let all = methods();
     if args.json {
-        let entries: Vec<Entry<'_>> = all
-            .iter()
-            .map(|info| Entry {
-                info,
-                scenes: scenes_of(info),
-            })
-            .collect();
-        println!("{}", serde_json::to_string_pretty(&entries)?);
+        println!("{}", serde_json::to_string_pretty(&catalog::integrators())?);
         return Ok(());
     }
-    print!("{}", table(all));
+    print!("{}", table(methods()));
     Ok(())
-}
-
-/// A registry entry with the built-in scenes it runs (the JSON form).
-#[derive(Serialize)]
-struct Entry<'a> {
-    #[serde(flatten)]
-    info: &'a MethodInfo,
-    scenes: Vec<&'static str>,
-}
-
-/// The built-in scenes the method runs, in `tumble scenes` order.
-fn scenes_of(m: &MethodInfo) -> Vec<&'static str> {
-    builtin()
-        .iter()
-        .map(|s| s.info())
-        .filter(|info| info.runs(m.name))
-        .map(|info| info.name)
-        .collect()
 }
 
 fn flags(m: &MethodInfo) -> String {

@@ -1,10 +1,48 @@
 //! The catalogue of built-in scenes as `tumble scenes --json` prints it and `tumble.scenes()`
 //! returns it: coordinates, columns, parameters, conserved quantities, oracle, applicable
 //! integrators and the default run (the scene's options resolved: a fixed step `default_dt`
-//! or a tolerance `default_tol`, depending on the default integrator).
+//! or a tolerance `default_tol`, depending on the default integrator); and the registry's
+//! integrators as `tumble integrators --json` prints them and `tumble.integrators()` returns
+//! them, each with the built-in scenes it runs.
 
 use serde::Serialize;
+use tumble_integrators::registry::{MethodInfo, methods};
+use tumble_scenarios::scenes::builtin;
 use tumble_scenarios::{RunOptions, SceneError, SceneInfo, StepControl};
+
+/// A registry entry with the built-in scenes it runs (`tumble integrators --json`,
+/// `tumble.integrators()`).
+#[derive(Debug, Clone, Serialize)]
+pub struct IntegratorEntry {
+    /// The registry's entry: name, order, family, properties, stages, problem kinds, summary.
+    #[serde(flatten)]
+    pub info: &'static MethodInfo,
+    /// The built-in scenes it runs, in `tumble scenes` order.
+    pub scenes: Vec<&'static str>,
+}
+
+/// Every registry entry with the built-in scenes it runs.
+#[must_use]
+pub fn integrators() -> Vec<IntegratorEntry> {
+    methods()
+        .iter()
+        .map(|info| IntegratorEntry {
+            info,
+            scenes: scenes_running(info),
+        })
+        .collect()
+}
+
+/// The built-in scenes `method` runs, in `tumble scenes` order.
+#[must_use]
+pub fn scenes_running(method: &MethodInfo) -> Vec<&'static str> {
+    builtin()
+        .iter()
+        .map(|s| s.info())
+        .filter(|info| info.runs(method.name))
+        .map(|info| info.name)
+        .collect()
+}
 
 /// One parameter of a scene.
 #[derive(Debug, Clone, Serialize)]

@@ -324,7 +324,7 @@ def scenes() -> List[Dict[str, Any]]:
 
 def integrators() -> List[Dict[str, Any]]:
     """Every integrator, as ``tumble integrators --json`` lists them: name, order, family,
-    properties, stages, problem, summary."""
+    properties, stages, problem, problems, summary, and the built-in scenes it runs."""
     return json.loads(_tumble.integrators_json())
 
 
