@@ -59,11 +59,23 @@ const GREY: RGBColor = RGBColor(0xb0, 0xb0, 0xb0);
 
 const CELL_W: u32 = 58;
 const CELL_H: u32 = 22;
+/// The least left margin (for row labels).
 const LEFT: u32 = 120;
 const TOP: u32 = 100;
 const KEY_LINE: u32 = 19;
 
 impl Atlas {
+    /// The left margin: the longest method name at the labels' 13 px, its 8 px gap and 16 px
+    /// of page, and never less than [`LEFT`] (`TABLE:BASE` names run long).
+    fn left(&self) -> u32 {
+        let longest = self
+            .methods
+            .iter()
+            .map(|m| super::title::width(m, 13.0))
+            .fold(0.0, f64::max);
+        LEFT.max((longest + 24.0).ceil() as u32)
+    }
+
     fn key_rows(&self) -> u32 {
         self.cases.len().div_ceil(2) as u32
     }
@@ -71,7 +83,7 @@ impl Atlas {
 
 impl Figure for Atlas {
     fn size(&self) -> (u32, u32) {
-        let w = LEFT + CELL_W * self.cases.len().max(1) as u32 + 150;
+        let w = self.left() + CELL_W * self.cases.len().max(1) as u32 + 150;
         let h =
             TOP + CELL_H * self.methods.len().max(1) as u32 + 60 + KEY_LINE * self.key_rows() + 20;
         (w.max(900), h)
@@ -86,6 +98,7 @@ impl Figure for Atlas {
         s: f64,
     ) -> DrawResult<DB> {
         let px = |v: u32| (f64::from(v) * s).round() as i32;
+        let left = self.left();
         root.fill(&WHITE)?;
         root.draw(&Text::new(
             self.title.clone(),
@@ -99,7 +112,7 @@ impl Figure for Atlas {
         ))?;
         // Column numbers (the key below names them).
         for (j, _) in self.cases.iter().enumerate() {
-            let x = LEFT + CELL_W * j as u32 + CELL_W / 2;
+            let x = left + CELL_W * j as u32 + CELL_W / 2;
             root.draw(&Text::new(
                 format!("{}", j + 1),
                 (px(x), px(TOP - 6)),
@@ -112,13 +125,13 @@ impl Figure for Atlas {
             let y = TOP + CELL_H * i as u32;
             root.draw(&Text::new(
                 method.clone(),
-                (px(LEFT - 8), px(y + CELL_H / 2)),
+                (px(left - 8), px(y + CELL_H / 2)),
                 font(13.0 * s)
                     .color(&BLACK)
                     .pos(Pos::new(HPos::Right, VPos::Center)),
             ))?;
             for (j, cell) in self.cells[i].iter().enumerate() {
-                let x = LEFT + CELL_W * j as u32;
+                let x = left + CELL_W * j as u32;
                 let (fill, mark) = match cell {
                     Cell::NotApplicable => (WHITE, ""),
                     Cell::Missing => (WHITE, "…"),
@@ -155,7 +168,7 @@ impl Figure for Atlas {
             }
         }
         // The colour bar, right of the grid.
-        let bar_x = LEFT + CELL_W * self.cases.len() as u32 + 30;
+        let bar_x = left + CELL_W * self.cases.len() as u32 + 30;
         let bar_h = (CELL_H * self.methods.len() as u32).max(200);
         let steps = 64;
         for k in 0..steps {
@@ -190,7 +203,7 @@ impl Figure for Atlas {
             "ok: colour only    ! property violated    × failed (typed error)    T time limit    \
              … not run (budget)    blank: not applicable"
                 .to_string(),
-            (px(LEFT), px(key_top)),
+            (px(left), px(key_top)),
             font(13.0 * s).color(&BLACK),
         ))?;
         let half = self.key_rows() as usize;
@@ -199,7 +212,7 @@ impl Figure for Atlas {
             root.draw(&Text::new(
                 format!("{}  {case}", j + 1),
                 (
-                    px(LEFT + col as u32 * 330),
+                    px(left + col as u32 * 330),
                     px(key_top + 26 + KEY_LINE * row as u32),
                 ),
                 font(13.0 * s).color(&BLACK),
