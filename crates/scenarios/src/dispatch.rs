@@ -135,9 +135,11 @@ where
             }
             match (name, registry::composed(name)) {
                 (_, Some((table, base))) if base.name == "gauss2" => {
-                    let stepper = Composition::new(table, gauss2().stepper(y));
+                    // Dense output, where asked for, by re-stepping (a composition has no
+                    // interpolant of its own).
+                    let mut stepper = Composition::new(table, gauss2().stepper(y));
                     if events.is_empty() && plan.times.is_none() && !observer.wants_dense_steps() {
-                        driver.run_fixed(&mut stepper.clone(), &counted, y, h, observer)?
+                        driver.run_fixed(&mut stepper, &counted, y, h, observer)?
                     } else {
                         let mut dense = Restepped::new(stepper, interpolation_order(plan));
                         driver
