@@ -60,9 +60,10 @@ pub mod splitting;
 pub mod state;
 
 pub use coupled::{
-    CoupledLagrangian, CoupledLgvi, CoupledVectorField, KineticBlocks, Scalar, coupled_energy,
-    coupled_kinetic_gradient, coupled_lgvi4, coupled_lgvi6, coupled_lgvi8, coupled_lgvi10,
-    coupled_potential_gradient, coupled_state_from_velocities, coupled_torque, coupled_velocities,
+    CoupledLagrangian, CoupledLgvi, CoupledVectorField, KineticBlocks, KineticJet, Scalar,
+    coupled_energy, coupled_kinetic_gradient, coupled_lgvi4, coupled_lgvi6, coupled_lgvi8,
+    coupled_lgvi10, coupled_potential_gradient, coupled_state_from_velocities, coupled_torque,
+    coupled_velocities,
 };
 pub use diagnostics::{CoupledMonitor, Deviations, Initial, RigidBodyMonitor};
 pub use dmv::Dmv;

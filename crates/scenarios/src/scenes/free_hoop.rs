@@ -9,7 +9,11 @@
 //! `L = ½ Ωᵀ J(α) Ω + Ωᵀ B(α) α̇ + ½ M α̇² − V(R, α)` with
 //! `J(α) = diag(Ma²/2, Ma²/2, Ma²) + m (|r|² 𝟙 − r rᵀ)`, `B = m r × ∂r/∂α`, `M = m a²`,
 //! `V = m g (R r)_z`, `r = a (cos α, sin α, 0)`. The state is `(R, Π, α, p_α)` with `Π` the body
-//! angular momentum about the pivot. No chart: the hoop may pass through horizontal.
+//! angular momentum about the pivot. No chart: the hoop may pass through horizontal. The model
+//! gives the derivatives its integrators use — `∂J/∂α`, `∂²J/∂α²` (`B` and `M` are constant), the
+//! moment of gravity and `∂V/∂α` — in closed form (tests check them against automatic
+//! differentiation of the Lagrangian), so that its right-hand side and its variational step run
+//! in plain `f64`.
 //!
 //! The coupled Lie-group variational integrator (`lgvi`: symplectic, symmetric, order 2) runs the
 //! model on SO(3) × ℝ and conserves `L_z` to round-off (gravity is invariant under rotations
@@ -35,8 +39,8 @@ use std::f64::consts::FRAC_PI_2;
 
 use nalgebra::{Matrix3, SMatrix, SVector, Vector3};
 use tumble_integrators::rigid::{
-    CoupledLagrangian, CoupledState, CoupledVectorField, KineticBlocks, LieVectorField, Scalar,
-    coupled_energy, coupled_state_from_velocities, coupled_velocities,
+    CoupledLagrangian, CoupledState, CoupledVectorField, KineticBlocks, KineticJet, LieVectorField,
+    Scalar, coupled_energy, coupled_state_from_velocities, coupled_velocities,
 };
 use tumble_integrators::{Ode, ProblemKind};
 use tumble_kinematics::EulerConvention;
@@ -83,6 +87,91 @@ impl CoupledLagrangian<1> for FreeHoop {
         let a = D::from(self.hoop.radius);
         let r = Vector3::new(a * q[0].cos(), a * q[0].sin(), D::from(0.0));
         (rotation * r).z * D::from(self.hoop.bead_mass * self.hoop.gravity)
+    }
+
+    /// Closed forms, with `e = (cos α, sin α, 0)`, `e' = (−sin α, cos α, 0)` and `μ = m a²`:
+    /// `J = diag(Ma²/2, Ma²/2, Ma²) + μ (𝟙 − e eᵀ)`, `∂J/∂α = −μ (e' eᵀ + e e'ᵀ)`;
+    /// `B = μ e × e' = (0, 0, μ)` and `M = μ`, both constant.
+    fn kinetic_jet(&self, q: &SVector<f64, 1>) -> KineticJet<1> {
+        let p = &self.hoop;
+        let mu = p.bead_mass * p.radius * p.radius;
+        let (s, c) = q[0].sin_cos();
+        let (jd, jn) = (p.diameter_moment(), p.normal_moment());
+        let rotational = Matrix3::new(
+            jd + mu * s * s,
+            -mu * c * s,
+            0.0,
+            -mu * c * s,
+            jd + mu * c * c,
+            0.0,
+            0.0,
+            0.0,
+            jn + mu,
+        );
+        let (s2, c2) = (2.0 * s * c, c * c - s * s);
+        let d_rotational = Matrix3::new(
+            mu * s2,
+            -mu * c2,
+            0.0,
+            -mu * c2,
+            -mu * s2,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+        );
+        let coupling = SMatrix::<f64, 3, 1>::new(0.0, 0.0, mu);
+        KineticJet {
+            blocks: KineticBlocks {
+                rotational,
+                coupling,
+                internal: SMatrix::<f64, 1, 1>::new(mu),
+            },
+            derivatives: [KineticBlocks {
+                rotational: d_rotational,
+                coupling: SMatrix::zeros(),
+                internal: SMatrix::zeros(),
+            }],
+        }
+    }
+
+    /// Closed form: `∂²J/∂α² = 2μ [[cos 2α, sin 2α, 0], [sin 2α, −cos 2α, 0], [0, 0, 0]]`; `B`
+    /// and `M` are constant.
+    fn kinetic_hessian(&self, q: &SVector<f64, 1>) -> [[KineticBlocks<f64, 1>; 1]; 1] {
+        let p = &self.hoop;
+        let mu2 = 2.0 * p.bead_mass * p.radius * p.radius;
+        let (s2, c2) = (2.0 * q[0]).sin_cos();
+        [[KineticBlocks {
+            rotational: Matrix3::new(
+                mu2 * c2,
+                mu2 * s2,
+                0.0,
+                mu2 * s2,
+                -mu2 * c2,
+                0.0,
+                0.0,
+                0.0,
+                0.0,
+            ),
+            coupling: SMatrix::zeros(),
+            internal: SMatrix::zeros(),
+        }]]
+    }
+
+    /// Closed forms: with `z = Rᵀ e₃` (the vertical in body components), `V = m g a z·e`, the
+    /// moment `−∂V/∂η = m g a (z × e)` and `∂V/∂α = m g a z·e'`.
+    fn potential_derivatives(
+        &self,
+        rotation: &Matrix3<f64>,
+        q: &SVector<f64, 1>,
+    ) -> (Vector3<f64>, SVector<f64, 1>) {
+        let k = self.hoop.bead_mass * self.hoop.gravity * self.hoop.radius;
+        let (s, c) = q[0].sin_cos();
+        let z = Vector3::new(rotation[(2, 0)], rotation[(2, 1)], rotation[(2, 2)]);
+        (
+            Vector3::new(-z.z * s, z.z * c, z.x * s - z.y * c) * k,
+            SVector::<f64, 1>::new(k * (z.y * c - z.x * s)),
+        )
     }
 }
 

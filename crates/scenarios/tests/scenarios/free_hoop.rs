@@ -4,12 +4,13 @@
 
 use std::f64::consts::FRAC_PI_2;
 
-use nalgebra::{SVector, Vector3};
+use nalgebra::{Matrix3, SVector, Vector3};
 use tumble_integrators::rigid::{
-    CoupledLgvi, CoupledState, coupled_energy, coupled_state_from_velocities,
+    CoupledLagrangian, CoupledLgvi, CoupledState, KineticBlocks, Scalar, coupled_energy,
+    coupled_state_from_velocities,
 };
 use tumble_integrators::{
-    Driver, ExplicitRungeKutta, Flow, FnObserver, NoObserver, Status, Tolerances, gauss12,
+    Driver, ExplicitRungeKutta, Flow, FnObserver, NoObserver, Status, Stepper, Tolerances, gauss12,
 };
 use tumble_scenarios::scene::Rows;
 use tumble_scenarios::scenes::find;
@@ -220,4 +221,83 @@ fn free_hoop_scene_runs_with_lgvi_and_with_gauss() {
             ((r[1] * r[1] + r[2] * r[2] + r[3] * r[3] + r[4] * r[4]) - 1.0).abs() < 1e-12
         }));
     }
+}
+
+/// The free hoop with only its Lagrangian: every derivative by automatic differentiation (the
+/// trait's defaults), against which the scene's closed forms are checked.
+struct ByAutomaticDifferentiation(FreeHoop);
+
+impl CoupledLagrangian<1> for ByAutomaticDifferentiation {
+    fn kinetic<D: Scalar>(&self, q: &SVector<D, 1>) -> KineticBlocks<D, 1> {
+        self.0.kinetic(q)
+    }
+    fn potential<D: Scalar>(&self, rotation: &Matrix3<D>, q: &SVector<D, 1>) -> D {
+        self.0.potential(rotation, q)
+    }
+}
+
+#[test]
+fn closed_form_jet_hessian_and_moment_equal_automatic_differentiation() {
+    let model = FreeHoop {
+        hoop: HoopParams::new(1.3, 0.4, 0.7, 9.81).unwrap(),
+    };
+    let ad = ByAutomaticDifferentiation(model);
+    let close = |a: f64, b: f64, scale: f64| (a - b).abs() <= 4.0 * f64::EPSILON * scale;
+    for k in 0..40 {
+        let alpha = -7.0 + 0.37 * f64::from(k);
+        let q = SVector::<f64, 1>::new(alpha);
+        let rotation = tumble_kinematics::so3::exp(&Vector3::new(0.3 * alpha, 1.1, -0.2 * alpha));
+        let r = rotation.matrix();
+        let (closed, auto) = (model.kinetic_jet(&q), ad.kinetic_jet(&q));
+        let scale = closed.blocks.rotational.amax();
+        for (x, y) in [
+            (closed.blocks, auto.blocks),
+            (closed.derivatives[0], auto.derivatives[0]),
+        ] {
+            for (a, b) in x.rotational.iter().zip(y.rotational.iter()) {
+                assert!(close(*a, *b, scale), "J at alpha {alpha}: {a} vs {b}");
+            }
+            assert!(close(x.coupling[2], y.coupling[2], scale), "B at {alpha}");
+            assert!(x.coupling[0].abs() + y.coupling[0].abs() <= 4.0 * f64::EPSILON * scale);
+            assert!(close(x.internal[0], y.internal[0], scale), "M at {alpha}");
+        }
+        let (h1, h2) = (model.kinetic_hessian(&q), ad.kinetic_hessian(&q));
+        for (a, b) in h1[0][0].rotational.iter().zip(h2[0][0].rotational.iter()) {
+            assert!(close(*a, *b, scale), "J'' at alpha {alpha}: {a} vs {b}");
+        }
+        let ((m1, g1), (m2, g2)) = (
+            model.potential_derivatives(r, &q),
+            ad.potential_derivatives(r, &q),
+        );
+        let scale = 0.4 * 9.81 * 0.7;
+        for (a, b) in m1.iter().zip(m2.iter()) {
+            assert!(close(*a, *b, scale), "moment at alpha {alpha}: {a} vs {b}");
+        }
+        assert!(close(g1[0], g2[0], scale), "dV/dalpha at {alpha}");
+    }
+}
+
+#[test]
+fn closed_form_lgvi_steps_match_the_automatic_differentiation_ones() {
+    // The same 200 steps of the coupled LGVI with the closed forms and with automatic
+    // differentiation: the maps agree to round-off (their iterations stop at the same accuracy).
+    let model = FreeHoop { hoop: params(9.81) };
+    let ad = ByAutomaticDifferentiation(model);
+    let s0 = model.initial_state(1.2, 4.0, 0.7, 0.3);
+    let (mut a, mut b) = (s0, s0);
+    let (mut st_a, mut st_b) = (CoupledLgvi::<1>::new(), CoupledLgvi::<1>::new());
+    for k in 0..200 {
+        let t = 0.01 * f64::from(k);
+        Stepper::step(&mut st_a, &model, t, &mut a, 0.01).unwrap();
+        Stepper::step(&mut st_b, &ad, t, &mut b, 0.01).unwrap();
+    }
+    let d = (a.rotation - b.rotation)
+        .amax()
+        .max((a.momentum - b.momentum).amax())
+        .max((a.q - b.q).amax())
+        .max((a.p - b.p).amax());
+    assert!(
+        d < 1e-12,
+        "closed form and AD LGVI differ by {d:e} after 200 steps"
+    );
 }
