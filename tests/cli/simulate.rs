@@ -185,6 +185,72 @@ fn csv_values_round_trip_to_the_library_run_bit_for_bit() {
     }
 }
 
+/// The hoop scenes are separable Hamiltonians: Störmer–Verlet and the composition tables named
+/// alone run them from the command line, with the scene's columns, and give rows at chosen
+/// times.
+#[test]
+fn separable_methods_run_the_hoop_scenes_from_the_command_line() {
+    let dir = TempDir::new().unwrap();
+    let out = succeeds(
+        dir.path(),
+        &[
+            "simulate",
+            "driven-hoop",
+            "--integrator",
+            "verlet",
+            "--dt",
+            "0.001",
+            "-o",
+            "verlet.csv",
+        ],
+    );
+    assert!(stderr(&out).contains("verlet"), "{}", stderr(&out));
+    let (header, rows) = read_csv(&dir.path().join("verlet.csv"));
+    assert_eq!(header, find("driven-hoop").unwrap().info().columns());
+    // The default horizon of 10 s in steps of 1 ms, and the initial state.
+    assert_eq!(rows.len(), 10_001);
+    let energy_err = header.iter().position(|c| c == "energy_rel_err").unwrap();
+    assert!(rows.iter().all(|r| r[energy_err] < 1e-5));
+
+    succeeds(
+        dir.path(),
+        &[
+            "simulate",
+            "spinning-hoop",
+            "--integrator",
+            "kahan-li8",
+            "-o",
+            "kl8.csv",
+        ],
+    );
+    let (header, rows) = read_csv(&dir.path().join("kl8.csv"));
+    assert_eq!(header, find("spinning-hoop").unwrap().info().columns());
+    assert_eq!(rows.len(), 1_001);
+    let lz = header.iter().position(|c| c == "Lz").unwrap();
+    let energy_err = header.iter().position(|c| c == "energy_rel_err").unwrap();
+    assert!(
+        rows.iter()
+            .all(|r| (r[lz] - rows[0][lz]).abs() < 1e-15 && r[energy_err] < 1e-9)
+    );
+
+    succeeds(
+        dir.path(),
+        &[
+            "simulate",
+            "spinning-hoop",
+            "--integrator",
+            "yoshida4",
+            "--output-dt",
+            "0.25",
+            "-o",
+            "at.csv",
+        ],
+    );
+    let (_, rows) = read_csv(&dir.path().join("at.csv"));
+    let times: Vec<f64> = rows.iter().map(|r| r[0]).collect();
+    assert_eq!(times, (0..=40).map(|k| k as f64 * 0.25).collect::<Vec<_>>());
+}
+
 #[test]
 fn set_accepts_angle_expressions_and_every_thins_the_rows() {
     let dir = TempDir::new().unwrap();

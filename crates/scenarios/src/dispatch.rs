@@ -16,6 +16,8 @@
 //! | [`ProblemKind::FreeRigidBody`] | [`FreeRigidBody`] | discrete Moser–Veselov, the exact flow |
 //! | [`ProblemKind::LieVectorField`] | Euler's equations as a vector field on SO(3) × ℝ³ | RKMK, Crouch–Grossman |
 //! | [`ProblemKind::CoupledRigidBody`] | [`CoupledLagrangian`] on SO(3) × ℝⁿ | the coupled LGVI and its compositions (orders 4–10) |
+//! | [`ProblemKind::Separable`] | [`SeparableHamiltonian`] `H = T(p) + V(q)` on ℝ²ᵈ | symplectic Euler, Störmer–Verlet, and the composition tables named alone (orders 4–10), which compose Störmer–Verlet |
+//! | [`ProblemKind::Split`] | the same Hamiltonian as its drift and kick ([`HamiltonianSplit`]) | Strang splitting |
 //!
 //! A `TABLE:BASE` name ([`registry::composed`]) is the composition table applied to the base
 //! stepper, built here from the table and the base's arm: `lgvi` and `split2` on a rigid body,
@@ -29,9 +31,12 @@ use tumble_integrators::rigid::{
     RigidBodyState, cg3, coupled_lgvi4, coupled_lgvi6, coupled_lgvi8, coupled_lgvi10, lgvi4, lgvi6,
     lgvi8, lgvi10, rkmk4, split4, split6, split8,
 };
+use tumble_integrators::tables::composition;
 use tumble_integrators::{
-    Composition, Event, ExplicitRungeKutta, Observer, Ode, Order, ProblemKind, Report, Restepped,
-    State, Stepper, Tolerances, gauss2, gauss4, gauss6, gauss8, gauss10, gauss12,
+    Composition, Counted, Event, ExplicitRungeKutta, HamiltonianSplit, Observer, Ode, Order,
+    ProblemKind, Report, Restepped, SeparableHamiltonian, Splitting, SplittingStepper, State,
+    Stepper, StormerVerlet, SymplecticEuler, Tolerances, gauss2, gauss4, gauss6, gauss8, gauss10,
+    gauss12,
 };
 
 use crate::error::SceneError;
@@ -267,9 +272,84 @@ where
     })
 }
 
+/// Integrates a separable Hamiltonian `H = T(p) + V(q)` from `y = (q, p)` over the plan's
+/// horizon: as [`ProblemKind::Separable`] with symplectic Euler, Störmer–Verlet or a composition
+/// table named alone (which composes Störmer–Verlet), or as [`ProblemKind::Split`] — the drift
+/// and kick of [`HamiltonianSplit`] — with Strang splitting. Output at chosen times and dense
+/// rows re-step the method ([`Restepped`]). [`Outcome::evaluations`] counts `∇V` evaluations
+/// (Störmer–Verlet reuses the last one of a step as the first of the next), or sub-flows of
+/// the split.
+///
+/// # Errors
+/// Integration failures.
+pub fn run_separable<H, O, const S: usize>(
+    model: &H,
+    y: &mut SVector<f64, S>,
+    plan: &RunPlan,
+    observer: &mut O,
+) -> Result<Outcome, SceneError>
+where
+    H: SeparableHamiltonian,
+    O: Observer<SVector<f64, S>>,
+{
+    let name = plan.integrator();
+    let (report, evaluations) = match plan.kind {
+        ProblemKind::Separable => {
+            let counted = Counted::new(model);
+            let table = composition::ALL.into_iter().find(|t| t.name == name);
+            let report = match (name, table) {
+                ("symplectic-euler", _) => run_fixed(
+                    SymplecticEuler::default().stepper(y),
+                    &counted,
+                    y,
+                    plan,
+                    observer,
+                )?,
+                ("verlet", _) => run_fixed(
+                    StormerVerlet::default().stepper(y),
+                    &counted,
+                    y,
+                    plan,
+                    observer,
+                )?,
+                (_, Some(table)) => run_fixed(
+                    Composition::new(table, StormerVerlet::default().stepper(y)),
+                    &counted,
+                    y,
+                    plan,
+                    observer,
+                )?,
+                _ => return Err(no_stepper(plan, "separable Hamiltonian")),
+            };
+            (report, counted.evaluations().potential_gradients)
+        }
+        ProblemKind::Split => {
+            let counted = Counted::new(HamiltonianSplit::new(model));
+            let report = match name {
+                "strang" => run_fixed(
+                    SplittingStepper::new(Splitting::Strang),
+                    &counted,
+                    y,
+                    plan,
+                    observer,
+                )?,
+                _ => return Err(no_stepper(plan, "split")),
+            };
+            (report, counted.evaluations().flows)
+        }
+        kind => return Err(no_stepper(plan, kind.name())),
+    };
+    Ok(Outcome {
+        t: report.t,
+        steps: report.steps,
+        evaluations,
+        terminated: false,
+    })
+}
+
 /// Runs a fixed-step method without an interpolant of its own over the plan: plainly, or
 /// wrapped in [`Restepped`] when the plan asks for output times or the observer for dense
-/// steps (the one place the rigid-body and coupled runs make that choice).
+/// steps (the one place the rigid-body, coupled and separable runs make that choice).
 fn run_fixed<P: ?Sized, S: State, St: Stepper<P, State = S> + Clone, O: Observer<S>>(
     mut stepper: St,
     problem: &P,

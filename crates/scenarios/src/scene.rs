@@ -9,7 +9,9 @@
 
 use nalgebra::SVector;
 use tumble_integrators::registry::{self, MethodInfo};
-use tumble_integrators::{DenseStep, Driver, Event, Flow, Observer, Ode, ProblemKind};
+use tumble_integrators::{
+    DenseStep, Driver, Event, Flow, Observer, Ode, ProblemKind, SeparableHamiltonian,
+};
 
 use crate::dispatch;
 use crate::error::SceneError;
@@ -818,5 +820,27 @@ where
     let mut y = y0;
     let mut observer = RowObserver::new(columns, energy_column, plan, row, recorder);
     let outcome = dispatch::run_ode(problem, &mut y, plan, events, &mut observer)?;
+    Ok(observer.summary(&outcome))
+}
+
+/// Runs a separable Hamiltonian ([`ProblemKind::Separable`], or [`ProblemKind::Split`] as its
+/// drift and kick) with the plan's method through [`dispatch::run_separable`], from
+/// `y0 = (q, p)`, turning states into rows as [`run_vector`] does.
+pub fn run_hamiltonian<H, F, const S: usize>(
+    model: &H,
+    y0: SVector<f64, S>,
+    plan: &RunPlan,
+    columns: usize,
+    energy_column: usize,
+    row: F,
+    recorder: &mut dyn Recorder,
+) -> Result<RunSummary, SceneError>
+where
+    H: SeparableHamiltonian,
+    F: FnMut(f64, &SVector<f64, S>, &mut [f64]),
+{
+    let mut y = y0;
+    let mut observer = RowObserver::new(columns, energy_column, plan, row, recorder);
+    let outcome = dispatch::run_separable(model, &mut y, plan, &mut observer)?;
     Ok(observer.summary(&outcome))
 }

@@ -29,17 +29,39 @@
 //!   every direction, in Euler angles — the AD twin and cross-check of the SO(3) model, singular
 //!   at `θ = 0, π` (hoop horizontal), where its mass matrix becomes singular and the
 //!   accelerations are an error.
+//!
+//! # Separable Hamiltonians
+//!
+//! Both scenes are also separable Hamiltonians `H = T(p) + V(q)` in the smallest coordinates
+//! they need, so Störmer–Verlet (`verlet`), `symplectic-euler`, `strang` (drift and kick) and
+//! the composition tables named alone (`yoshida4` … `sofroniou-spaletta10`, which compose
+//! Störmer–Verlet) run them, besides the first-order methods on the right-hand sides:
+//!
+//! * `driven-hoop` in the rotating frame, per unit `m a²` (so that a massless bead is no
+//!   exception): `H = ½p² − ½ω² sin²α − (g/a) cos α` with `p = α̇`, the Jacobi integral, on the
+//!   state `(α, α̇)` of the right-hand side ([`SeparableHamiltonian`] for [`DrivenHoop`]).
+//! * `spinning-hoop` by the Routh reduction of its cyclic angle φ (Goldstein, *Classical
+//!   Mechanics*, §8.3): `p_φ = L_z` is a constant of the motion and α moves under
+//!   `H_red = p_α²/(2 m a²) + L_z²/(2 I(α)) − m g a cos α`, `I(α) = Ma²/2 + m a² sin²α`, while
+//!   `φ̇ = L_z / I(α)`. [`SpinningHoopHamiltonian`] keeps φ in the state by exchanging the pair
+//!   `(φ, L_z)` for `(L_z, −φ)`, so that one step of the separable method advances α, α̇ and φ
+//!   together, symplectically on the whole phase space, with `L_z` unchanged by every step.
+//!
+//! The rows are the scene's columns whatever the model: `φ̇ = L_z / I(α)` and `α̇` from the
+//! state, energy and angular momentum from them.
 
 use std::f64::consts::FRAC_PI_2;
 
 use nalgebra::{RealField, SVector, Vector3};
-use tumble_integrators::{Action, Direction, Event, Ode, ProblemKind};
+use tumble_integrators::{Action, Direction, Event, Ode, ProblemKind, SeparableHamiltonian};
 use tumble_kinematics::EulerConvention;
 
 use crate::error::{ModelError, SceneError, finite, non_negative, positive};
 use crate::lagrangian::Lagrangian;
 use crate::params::{Domain, ParamSpec, Params};
-use crate::scene::{Guide, Recorder, RunPlan, RunSummary, Scene, SceneInfo, run_vector};
+use crate::scene::{
+    Guide, Recorder, RunPlan, RunSummary, Scene, SceneInfo, run_hamiltonian, run_vector,
+};
 
 /// Parameters shared by the hoop scenes (SI units).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -204,6 +226,31 @@ impl Ode<SVector<f64, 2>> for DrivenHoop {
     }
 }
 
+/// `driven-hoop` as a separable Hamiltonian per unit `m a²`, state `(α, p)` with `p = α̇` — the
+/// same numbers as the state of the right-hand side:
+/// `H = ½p² − ½ω² sin²α − (g/a) cos α`, the Jacobi integral ([`DrivenHoop::jacobi_integral`]).
+/// Per unit `m a²` the bead's mass drops out, so a massless bead (`m = 0`) is no exception.
+impl SeparableHamiltonian for DrivenHoop {
+    fn dof(&self) -> usize {
+        1
+    }
+    fn kinetic(&self, p: &[f64]) -> f64 {
+        0.5 * p[0] * p[0]
+    }
+    fn potential(&self, q: &[f64]) -> f64 {
+        let (s, co) = q[0].sin_cos();
+        -0.5 * self.omega * self.omega * s * s - self.hoop.gravity / self.hoop.radius * co
+    }
+    fn kinetic_gradient(&self, p: &[f64], out: &mut [f64]) {
+        out[0] = p[0];
+    }
+    /// `∂V/∂α = −(ω² cos α − g/a) sin α`.
+    fn potential_gradient(&self, q: &[f64], out: &mut [f64]) {
+        let (s, co) = q[0].sin_cos();
+        out[0] = -(self.omega * self.omega * co - self.hoop.gravity / self.hoop.radius) * s;
+    }
+}
+
 /// `spinning-hoop`: coordinates (φ, α); the vertical hoop turns freely about lab z.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SpinningHoop {
@@ -256,6 +303,87 @@ impl Ode<SVector<f64, 4>> for SpinningHoop {
         dy[1] = alpha_dot;
         dy[2] = -2.0 * ma2 * s * co * alpha_dot * phi_dot / (p.diameter_moment() + ma2 * s * s);
         dy[3] = s * co * phi_dot * phi_dot - p.gravity / p.radius * s;
+    }
+}
+
+/// `spinning-hoop` as a separable Hamiltonian: the Routh reduction of the cyclic angle φ, with
+/// φ carried along.
+///
+/// The Hamiltonian of the spinning hoop is
+/// `H = p_α²/(2 m a²) + p_φ²/(2 I(α)) − m g a cos α`, `I(α) = Ma²/2 + m a² sin²α`.
+/// φ is cyclic, so `p_φ = L_z = I(α) φ̇` is conserved and, for each value of it, `α` moves under
+/// Routh's reduced Hamiltonian `H_red(α, p_α) = p_α²/(2 m a²) + p_φ²/(2 I(α)) − m g a cos α`,
+/// separable with the centrifugal term `p_φ²/(2 I(α))` in the potential; φ follows from
+/// `φ̇ = p_φ / I(α)` (Goldstein, Poole & Safko, *Classical Mechanics*, 3rd ed., §8.3;
+/// Marsden & Ratiu, *Introduction to Mechanics and Symmetry*, 2nd ed., §8.9).
+///
+/// Rather than integrate `H_red` and reconstruct φ by quadrature, the model keeps the whole
+/// phase space and exchanges the cyclic pair by the canonical map `(φ, p_φ) ↦ (p_φ, −φ)`: with
+/// positions `q = (α, L_z)` and momenta `p = (α̇, −φ)`, `H = T(p) + W(q)` is separable, with
+/// `T = ½ m a² α̇²` and `W(α, L_z) = L_z²/(2 I(α)) − m g a cos α`. The drift moves only `α`
+/// (`α += h α̇`, `L_z` has no conjugate velocity in `T`), the kick is exact (`α̇ −= h ∂W/∂α`,
+/// `φ += h L_z / I(α)` with `α` and `L_z` fixed), so Störmer–Verlet, symplectic Euler, Strang
+/// splitting and their compositions are symplectic on the whole phase space, and `L_z` — a
+/// position that no step changes — is conserved exactly.
+///
+/// State `(α, L_z, α̇, −φ)`. The bead's pair is stored per unit `m a²` (`α̇ = p_α/(m a²)`): its
+/// components of [`SeparableHamiltonian::kinetic_gradient`] and
+/// [`SeparableHamiltonian::potential_gradient`] are those of `H/(m a²)`,
+/// `α̇` and `−(L_z/I)² sin α cos α + (g/a) sin α`, finite for a massless bead (`m = 0`, where
+/// `p_α` would vanish); the `(L_z, −φ)` components are those of `H`. This is Störmer–Verlet of
+/// `H` in the canonical variables with `p_α` scaled by the constant `1/(m a²)`, step for step,
+/// for every `m > 0`, and its limit at `m = 0`. [`SeparableHamiltonian::kinetic`] and
+/// [`SeparableHamiltonian::potential`] are `T` and `W`, so that `energy` is `H`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SpinningHoopHamiltonian {
+    /// Shared hoop parameters.
+    pub hoop: HoopParams,
+}
+
+impl SpinningHoopHamiltonian {
+    /// The state `(α, L_z, α̇, −φ)` of the scene's `(φ, α, φ̇, α̇)`.
+    #[must_use]
+    pub fn from_rates(&self, y: &SVector<f64, 4>) -> SVector<f64, 4> {
+        let l_z = SpinningHoop { hoop: self.hoop }.angular_momentum_z(y[1], y[2]);
+        SVector::<f64, 4>::new(y[1], l_z, y[3], -y[0])
+    }
+
+    /// The scene's `(φ, α, φ̇, α̇)` of the state `(α, L_z, α̇, −φ)`, with `φ̇ = L_z / I(α)`.
+    #[must_use]
+    pub fn to_rates(&self, y: &SVector<f64, 4>) -> SVector<f64, 4> {
+        let phi_dot = y[1] / SpinningHoop { hoop: self.hoop }.axial_moment(y[0]);
+        SVector::<f64, 4>::new(-y[3], y[0], phi_dot, y[2])
+    }
+}
+
+impl SeparableHamiltonian for SpinningHoopHamiltonian {
+    fn dof(&self) -> usize {
+        2
+    }
+    /// `T = ½ m a² α̇²`.
+    fn kinetic(&self, p: &[f64]) -> f64 {
+        let h = &self.hoop;
+        0.5 * h.bead_mass * h.radius * h.radius * p[0] * p[0]
+    }
+    /// `W = L_z²/(2 I(α)) − m g a cos α`.
+    fn potential(&self, q: &[f64]) -> f64 {
+        let h = &self.hoop;
+        let i = SpinningHoop { hoop: *h }.axial_moment(q[0]);
+        0.5 * q[1] * q[1] / i - h.bead_mass * h.gravity * h.radius * q[0].cos()
+    }
+    /// `(α̇, 0)`: `L_z` has no conjugate velocity.
+    fn kinetic_gradient(&self, p: &[f64], out: &mut [f64]) {
+        out[0] = p[0];
+        out[1] = 0.0;
+    }
+    /// `(−(L_z/I)² sin α cos α + (g/a) sin α, L_z/I(α))`.
+    fn potential_gradient(&self, q: &[f64], out: &mut [f64]) {
+        let h = &self.hoop;
+        let (s, co) = q[0].sin_cos();
+        let i = h.diameter_moment() + h.bead_mass * h.radius * h.radius * s * s;
+        let phi_dot = q[1] / i;
+        out[0] = -phi_dot * phi_dot * s * co + h.gravity / h.radius * s;
+        out[1] = phi_dot;
     }
 }
 
@@ -395,7 +523,7 @@ pub static DRIVEN_HOOP: SceneInfo = SceneInfo {
     conserved: &["Jacobi integral (energy in the rotating frame)"],
     oracle: "alpha'' = (omega^2 cos alpha - g/a) sin alpha; cos alpha* = g/(a omega^2); \
              small oscillations Omega^2 = g/a - omega^2 (bottom), omega^2 - g^2/(a^2 omega^2) (alpha*)",
-    problems: &[ProblemKind::Ode],
+    problems: &[ProblemKind::Separable, ProblemKind::Split, ProblemKind::Ode],
     needs_dense_output: false,
     default_integrator: "gauss8",
     default_step: 0.01,
@@ -429,30 +557,28 @@ impl Scene for DrivenHoopScene {
         let y0 = SVector::<f64, 2>::new(params.get("alpha0")?, params.get("alpha_dot0")?);
         let el = crate::lagrangian::EulerLagrange::new(scene);
         let columns = info.columns().len();
-        run_vector(
-            &scene,
-            y0,
-            plan,
-            columns,
-            3,
-            |t, y, out| {
-                let q = SVector::<f64, 1>::new(y[0]);
-                let qd = SVector::<f64, 1>::new(y[1]);
-                let angles = Vector3::new(scene.omega * t, FRAC_PI_2, 0.0);
-                let rates = Vector3::new(scene.omega, 0.0, 0.0);
-                let l = hoop_angular_momentum(&scene.hoop, &angles, &rates, y[0], y[1]);
-                out[0] = t;
-                out[1] = y[0];
-                out[2] = y[1];
-                out[3] = el.energy(t, &q, &qd);
-                out[5] = l.x;
-                out[6] = l.y;
-                out[7] = l.z;
-                out[8] = 0.0;
-            },
-            &mut [],
-            recorder,
-        )
+        let row = |t: f64, y: &SVector<f64, 2>, out: &mut [f64]| {
+            let q = SVector::<f64, 1>::new(y[0]);
+            let qd = SVector::<f64, 1>::new(y[1]);
+            let angles = Vector3::new(scene.omega * t, FRAC_PI_2, 0.0);
+            let rates = Vector3::new(scene.omega, 0.0, 0.0);
+            let l = hoop_angular_momentum(&scene.hoop, &angles, &rates, y[0], y[1]);
+            out[0] = t;
+            out[1] = y[0];
+            out[2] = y[1];
+            out[3] = el.energy(t, &q, &qd);
+            out[5] = l.x;
+            out[6] = l.y;
+            out[7] = l.z;
+            out[8] = 0.0;
+        };
+        match plan.kind {
+            // The separable model's state (α, p) per unit m a² is the ODE's (α, α̇).
+            ProblemKind::Separable | ProblemKind::Split => {
+                run_hamiltonian(&scene, y0, plan, columns, 3, row, recorder)
+            }
+            _ => run_vector(&scene, y0, plan, columns, 3, row, &mut [], recorder),
+        }
     }
 }
 
@@ -498,7 +624,7 @@ pub static SPINNING_HOOP: SceneInfo = SceneInfo {
     parameters: &SPINNING_SPECS,
     conserved: &["energy", "Lz = (M a^2/2 + m a^2 sin^2 alpha) phi_dot"],
     oracle: "M=1, a=0.4, m=0.2, phi_dot=5 with the bead at the top gives phi_dot = 25/6 at 45 deg from the top",
-    problems: &[ProblemKind::Ode],
+    problems: &[ProblemKind::Separable, ProblemKind::Split, ProblemKind::Ode],
     needs_dense_output: false,
     default_integrator: "gauss8",
     default_step: 0.01,
@@ -558,26 +684,33 @@ impl Scene for SpinningHoopScene {
             params.get("alpha_dot0")?,
         );
         let columns = info.columns().len();
-        run_vector(
-            &scene,
-            y0,
-            plan,
-            columns,
-            5,
-            |t, y, out| {
-                let angles = Vector3::new(y[0], FRAC_PI_2, 0.0);
-                let rates = Vector3::new(y[2], 0.0, 0.0);
-                let l = hoop_angular_momentum(&scene.hoop, &angles, &rates, y[1], y[3]);
-                out[..5].copy_from_slice(&[t, y[0], y[1], y[2], y[3]]);
-                out[5] = scene.energy(y[1], y[2], y[3]);
-                out[7] = l.x;
-                out[8] = l.y;
-                out[9] = l.z;
-                out[10] = 0.0;
-            },
-            &mut [],
-            recorder,
-        )
+        let row = move |t: f64, y: &SVector<f64, 4>, out: &mut [f64]| {
+            let angles = Vector3::new(y[0], FRAC_PI_2, 0.0);
+            let rates = Vector3::new(y[2], 0.0, 0.0);
+            let l = hoop_angular_momentum(&scene.hoop, &angles, &rates, y[1], y[3]);
+            out[..5].copy_from_slice(&[t, y[0], y[1], y[2], y[3]]);
+            out[5] = scene.energy(y[1], y[2], y[3]);
+            out[7] = l.x;
+            out[8] = l.y;
+            out[9] = l.z;
+            out[10] = 0.0;
+        };
+        match plan.kind {
+            ProblemKind::Separable | ProblemKind::Split => {
+                // State (α, L_z, α̇, −φ); rows in the scene's (φ, α, φ̇, α̇).
+                let model = SpinningHoopHamiltonian { hoop: scene.hoop };
+                run_hamiltonian(
+                    &model,
+                    model.from_rates(&y0),
+                    plan,
+                    columns,
+                    5,
+                    |t, y, out| row(t, &model.to_rates(y), out),
+                    recorder,
+                )
+            }
+            _ => run_vector(&scene, y0, plan, columns, 5, row, &mut [], recorder),
+        }
     }
 
     fn map_guides(&self, params: &Params, axes: &[&str], _x_range: (f64, f64)) -> Vec<Guide> {

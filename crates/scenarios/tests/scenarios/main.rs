@@ -14,4 +14,5 @@ mod heavy_top_euler;
 mod lagrangian_ad;
 mod rigid_scenes;
 mod scene_runs;
+mod separable_hoops;
 mod spinning_hoop;
