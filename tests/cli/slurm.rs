@@ -301,7 +301,8 @@ fn bad_inputs_are_refused_before_any_script_is_written() {
 #[test]
 fn batch_logs_get_progress_lines_and_stdout_stays_empty() {
     let tmp = TempDir::new().unwrap();
-    let file = write(tmp.path(), "hoop.sweep.toml", &sweep(40, 1.0));
+    // Long enough (about 0.15 s in a release build) for several lines at the shortest period.
+    let file = write(tmp.path(), "hoop.sweep.toml", &sweep(40, 3.0));
     let out = succeeds(
         tmp.path(),
         &[
@@ -310,7 +311,7 @@ fn batch_logs_get_progress_lines_and_stdout_stays_empty() {
             "--threads",
             "1",
             "--progress-every",
-            "0.05",
+            "0.01",
             "-o",
             "p",
         ],

@@ -26,7 +26,8 @@
 //! G(f) = a + a × f + (a·f) f − 2 J f = 0,     ∇G(f) = hat(a) + (a·f) 𝟙 + f aᵀ − 2 J,
 //! ```
 //!
-//! solved by Newton's method with the analytic Jacobian (inverted by cofactors), from the
+//! solved by Newton's method with the analytic Jacobian (inverted by cofactors, and kept for
+//! the iterations that follow an increment below 1e-6 of `f`; `(2J)⁻¹` once per body), from the
 //! first two terms of the series `f = (2J)⁻¹ (a + a × f + (a·f) f)` — `f₁ = (2J)⁻¹ a`,
 //! `f₀ = f₁ + (2J)⁻¹ (a × f₁ + (a·f₁) f₁)`, within `O(|a|³)` of the root. The increments shrink
 //! quadratically; the iteration stops when the increment is at round-off, when it stops
@@ -74,6 +75,7 @@ use tumble_kinematics::so3::hat;
 
 use crate::composition::Composition;
 use crate::error::{Error, check_step};
+use crate::rigid::exact::FreeRigidBody;
 use crate::rigid::problem::RigidBody;
 use crate::rigid::state::{RigidBodyState, RigidCarry};
 use crate::stepper::Stepper;
@@ -132,6 +134,9 @@ pub struct Lgvi {
     carry: RigidCarry,
     /// The moment at the end of the last step (the start of the next, if it continues).
     torque: Option<Vector3<f64>>,
+    /// The body of the last step with its `2J` and `(2J)⁻¹` (formed once per body, not once
+    /// per step).
+    inertia: Option<(FreeRigidBody, Matrix3<f64>, Matrix3<f64>)>,
 }
 
 impl Default for Lgvi {
@@ -140,6 +145,7 @@ impl Default for Lgvi {
             max_iterations: MAX_NEWTON_ITERATIONS,
             carry: RigidCarry::default(),
             torque: None,
+            inertia: None,
         }
     }
 }
@@ -170,31 +176,47 @@ pub(crate) struct Solved {
 /// Returns `(iterations, last increment)` on failure.
 pub(crate) fn solve_cayley(
     j2: &Matrix3<f64>,
+    j2_inv: &Matrix3<f64>,
     a: &Vector3<f64>,
     max_iterations: usize,
 ) -> Result<Solved, (usize, f64)> {
-    let Some(j2_inv) = j2.try_inverse() else {
-        return Err((0, f64::NAN));
-    };
     let f1 = j2_inv * a;
     let mut f = f1 + j2_inv * (a.cross(&f1) + f1 * a.dot(&f1));
     let ahat = hat(a);
     let mut previous = f64::INFINITY;
+    // The Jacobian's inverse from the first iterate is kept once the increment is below 1e-6
+    // of f and shrinking at least fourfold (from the O(|a|³) guess the first step usually lands
+    // within round-off of the root, so the confirming iterations need no fresh matrix).
+    let mut jac_inv: Option<Matrix3<f64>> = None;
     for iteration in 1..=max_iterations {
         let af = a.dot(&f);
         let g = a + a.cross(&f) + f * af - j2 * f;
-        let jac = ahat + Matrix3::from_diagonal_element(af) + f * a.transpose() - j2;
-        let Some(jac_inv) = jac.try_inverse() else {
-            return Err((iteration, f64::NAN));
+        let fresh = jac_inv.is_none();
+        let inverse = match jac_inv {
+            Some(m) => m,
+            None => {
+                let jac = ahat + Matrix3::from_diagonal_element(af) + f * a.transpose() - j2;
+                let Some(m) = jac.try_inverse() else {
+                    return Err((iteration, f64::NAN));
+                };
+                jac_inv = Some(m);
+                m
+            }
         };
-        let delta = jac_inv * (-g);
+        let delta = inverse * (-g);
         let size = delta.amax();
         if !size.is_finite() {
             return Err((iteration, size));
         }
         if size >= previous {
+            let at_round_off = previous <= 1e-10 * f.amax().max(f64::MIN_POSITIVE);
+            if !fresh && !at_round_off {
+                // A kept matrix that no longer contracts: form it at this iterate.
+                jac_inv = None;
+                continue;
+            }
             // Stagnation: the previous iterate was as good as round-off allows.
-            return if previous <= 1e-10 * f.amax().max(f64::MIN_POSITIVE) {
+            return if at_round_off {
                 Ok(Solved { f })
             } else {
                 Err((iteration, size))
@@ -207,6 +229,11 @@ pub(crate) fn solve_cayley(
             || (previous.is_finite() && theta * size <= (1.0 - theta) * f64::EPSILON * f.amax())
         {
             return Ok(Solved { f });
+        }
+        if theta > 0.25 || size > 1e-6 * f.amax() {
+            // Far from the root (a long step) Newton's own quadratic convergence pays for a
+            // fresh matrix.
+            jac_inv = None;
         }
         previous = size;
     }
@@ -227,7 +254,19 @@ impl<B: RigidBody + ?Sized> Stepper<B> for Lgvi {
             return check_step(h);
         }
         let body = problem.body();
-        let j2 = body.inertia() * 2.0;
+        let (j2, j2_inv) = match &self.inertia {
+            Some((cached, j2, j2_inv)) if cached == body => (*j2, *j2_inv),
+            _ => {
+                let j2 = body.inertia() * 2.0;
+                let j2_inv = j2.try_inverse().ok_or_else(|| Error::SingularMatrix {
+                    t,
+                    h,
+                    state: crate::state::State::to_vec(state),
+                })?;
+                self.inertia = Some((*body, j2, j2_inv));
+                (j2, j2_inv)
+            }
+        };
         let torque_free = problem.is_torque_free();
         let continues = self.carry.prepare(t, state);
         let m0 = match (torque_free, self.torque) {
@@ -236,15 +275,16 @@ impl<B: RigidBody + ?Sized> Stepper<B> for Lgvi {
             (false, _) => problem.torque(&state.rotation),
         };
         let a = state.momentum * h + m0 * (0.5 * h * h);
-        let solved = solve_cayley(&j2, &a, self.max_iterations).map_err(|(iterations, inc)| {
-            Error::NoConvergence {
-                t,
-                h,
-                iterations,
-                increment: inc,
-                state: crate::state::State::to_vec(state),
-            }
-        })?;
+        let solved =
+            solve_cayley(&j2, &j2_inv, &a, self.max_iterations).map_err(|(iterations, inc)| {
+                Error::NoConvergence {
+                    t,
+                    h,
+                    iterations,
+                    increment: inc,
+                    state: crate::state::State::to_vec(state),
+                }
+            })?;
         // F = 𝟙 + G with G = 2 (hat f + hat f²)/(1 + |f|²), applied as increments: R + R G
         // and Π + Gᵀ(…) round once per entry, in a pattern that changes with the state (R F would
         // round the diagonal 1 − O(|f|²) of F the same way at every step of a steady rotation and
