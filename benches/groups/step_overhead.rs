@@ -3,7 +3,10 @@
 //! `free-hoop` (`ℝ¹⁴`) and `free-body` (`ℝ¹²`) at their default parameters.
 //!
 //! - `rhs`: one evaluation of the right-hand side, at each of the states a run passes through
-//!   in turn (passed through `black_box`);
+//!   in turn (passed through `black_box`): independent evaluations, which the processor
+//!   overlaps (throughput);
+//! - `rhs-chained`: the same evaluations, each argument depending on the previous result
+//!   through one multiply–add, as the stages of a step do (latency; [`rhs_chained`]);
 //! - `<method>`: one step of `h` = the scene's default step (0.01), 1000 steps from the initial
 //!   state through `Stepper::step` (fixed steps, the FSAL stage reused), and
 //!   `<method>-adaptive`: `attempt` + `accept`, the step of an adaptive run including its
@@ -11,7 +14,10 @@
 //!   same evaluations).
 //!
 //! Before criterion measures, a table is printed: evaluations per step (counted by a
-//! wrapper), ns per step, and `overhead = step time / (evaluations × RHS time) − 1`. The times
+//! wrapper), ns per step, and `overhead = step time / (evaluations × RHS time) − 1`, against
+//! both RHS times. The stages of an explicit step are sequential, so the chained time is the
+//! floor a step's evaluations can reach; the independent time is the lower figure a
+//! right-hand side shows on its own. The times
 //! are the fastest of 21 samples of at least 5 ms each, the entries taking turns sample by
 //! sample: on a shared machine the fastest sample is the one least disturbed by other
 //! processes (medians moved by up to a factor 2 between two runs under a load of 5–8 on 2
@@ -134,6 +140,22 @@ fn rhs_only<const N: usize, P: Ode<SVector<f64, N>>>(problem: &P, states: &[SVec
     }
 }
 
+/// The same `STEPS` evaluations in a dependent chain: each argument is the trajectory's state
+/// plus `0 ×` the previous result, so an evaluation cannot start before the previous one has
+/// finished (`0 × x` is not folded away in floating point). The stages of an explicit
+/// Runge–Kutta step form such a chain (stage `i` needs `kᵢ₋₁`), with one multiply–add between
+/// evaluations at least, which this chain has too: its time per evaluation is the latency
+/// of an evaluation, where [`rhs_only`] measures its throughput (consecutive evaluations
+/// overlap in the processor).
+fn rhs_chained<const N: usize, P: Ode<SVector<f64, N>>>(problem: &P, states: &[SVector<f64, N>]) {
+    let mut dy = SVector::<f64, N>::zeros();
+    for (k, y) in states.iter().take(STEPS as usize).enumerate() {
+        let arg = black_box(y) + 0.0 * dy;
+        problem.rhs(k as f64 * H, &arg, &mut dy);
+    }
+    black_box(&mut dy);
+}
+
 /// One timed entry: a label, evaluations per step, and the run.
 struct Entry<'a> {
     label: String,
@@ -179,11 +201,18 @@ fn scene<const N: usize, P: Ode<SVector<f64, N>>>(
     y0: &SVector<f64, N>,
 ) {
     let states = trajectory(problem, y0);
-    let mut entries = vec![Entry {
-        label: "rhs".into(),
-        evaluations: 1.0,
-        run: Box::new(|| rhs_only(problem, &states)),
-    }];
+    let mut entries = vec![
+        Entry {
+            label: "rhs".into(),
+            evaluations: 1.0,
+            run: Box::new(|| rhs_only(problem, &states)),
+        },
+        Entry {
+            label: "rhs-chained".into(),
+            evaluations: 1.0,
+            run: Box::new(|| rhs_chained(problem, &states)),
+        },
+    ];
     for (name, embedded) in METHODS {
         for adaptive in [false, true] {
             if adaptive && !embedded {
@@ -209,25 +238,30 @@ fn scene<const N: usize, P: Ode<SVector<f64, N>>>(
     }
     let times = time_all(&entries);
     let per = |i: usize| times[i] / f64::from(STEPS);
-    let rhs = per(0);
+    let (rhs, chained) = (per(0), per(1));
     eprintln!();
     eprintln!(
-        "step-overhead/{scene} (dimension {N}, h = {H}, {STEPS} steps a run): RHS {:.1} ns",
-        rhs * 1e9
+        "step-overhead/{scene} (dimension {N}, h = {H}, {STEPS} steps a run): RHS {:.1} ns \
+         independent, {:.1} ns chained",
+        rhs * 1e9,
+        chained * 1e9
     );
     eprintln!(
-        "  {:<18} {:>10} {:>11} {:>14} {:>9}",
-        "method", "RHS/step", "ns/step", "ns of RHS", "overhead"
+        "  {:<18} {:>10} {:>11} {:>14} {:>9} {:>14} {:>9}",
+        "method", "RHS/step", "ns/step", "ns of RHS", "overhead", "ns chained", "overhead"
     );
-    for (i, e) in entries.iter().enumerate().skip(1) {
+    for (i, e) in entries.iter().enumerate().skip(2) {
         let rhs_part = e.evaluations * rhs;
+        let chained_part = e.evaluations * chained;
         eprintln!(
-            "  {:<18} {:>10.2} {:>11.1} {:>14.1} {:>8.1}%",
+            "  {:<18} {:>10.2} {:>11.1} {:>14.1} {:>8.1}% {:>14.1} {:>8.1}%",
             e.label,
             e.evaluations,
             per(i) * 1e9,
             rhs_part * 1e9,
-            (per(i) / rhs_part - 1.0) * 100.0
+            (per(i) / rhs_part - 1.0) * 100.0,
+            chained_part * 1e9,
+            (per(i) / chained_part - 1.0) * 100.0
         );
     }
     g.throughput(Throughput::Elements(u64::from(STEPS)));

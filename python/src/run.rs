@@ -187,7 +187,7 @@ pub(crate) fn simulate<'py>(
 pub(crate) fn scenes_json() -> PyResult<String> {
     let entries = scenes::builtin()
         .iter()
-        .map(|s| catalog::entry(s.info()))
+        .map(|s| catalog::entry(*s))
         .collect::<Result<Vec<_>, _>>()
         .map_err(refused)?;
     serde_json::to_string(&entries).map_err(refused)

@@ -1,6 +1,7 @@
 //! `tumble scenes`: list the built-in scenes with their coordinates, CSV columns, parameters
-//! (name, default, unit, domain, description), conserved quantities, oracle, default run and
-//! applicable integrators.
+//! (name, default, unit, domain, description), conserved quantities, oracle, default run, the
+//! methods recommended by purpose (from the scene's measured work–precision) and applicable
+//! integrators.
 //!
 //! `--json` prints the same as a JSON array of objects. The default step shown is the one a run
 //! without `--dt`/`--tol` uses (the scene's options resolved), a fixed step `dt` or a
@@ -15,8 +16,8 @@ use tumble_studies::catalog::{Entry, entry};
 pub struct Args {
     /// Print a JSON array of objects (name, summary, coordinates, columns, parameters,
     /// conserved, oracle, problems, integrators, composition_bases, default_integrator,
-    /// default_error, default_dt or
-    /// default_tol, default_t_end) instead of text.
+    /// default_error, default_dt or default_tol, default_t_end, recommended: purpose,
+    /// integrators, evidence) instead of text.
     #[arg(long)]
     pub json: bool,
 }
@@ -29,9 +30,8 @@ pub fn run(args: &Args) -> Result<()> {
     let entries = builtin()
         .iter()
         .map(|s| {
-            let info = s.info();
-            entry(info)
-                .with_context(|| format!("scene `{}`: its own defaults are invalid", info.name))
+            entry(*s)
+                .with_context(|| format!("scene `{}`: its own defaults are invalid", s.info().name))
         })
         .collect::<Result<Vec<_>>>()?;
     if args.json {
@@ -108,6 +108,19 @@ fn text(entries: &[Entry]) -> String {
             "  default run  {}, {step}, t_end = {} s; error {:.1e} against the reference\n",
             e.default_integrator, e.default_t_end, e.default_error
         );
+        for (i, r) in e.recommended.iter().enumerate() {
+            let label = if i == 0 {
+                "recommended "
+            } else {
+                "            "
+            };
+            out += &format!(
+                "  {label} {}: {} ({})\n",
+                r.purpose,
+                r.integrators.join(", "),
+                r.evidence
+            );
+        }
         out += &format!("  integrators  {}\n", e.integrators.join(", "));
         if !e.composition_bases.is_empty() {
             out += &format!(

@@ -59,6 +59,37 @@ fn json_lists_every_builtin_scene_with_its_parameters_columns_and_defaults() {
             .collect();
         assert_eq!(integrators, info.integrators());
         assert!(!entry["conserved"].as_array().unwrap().is_empty());
+        let recommended = entry["recommended"].as_array().unwrap();
+        assert_eq!(recommended.len(), scene.recommendations().len());
+        for (r, rec) in recommended.iter().zip(scene.recommendations()) {
+            assert_eq!(r["purpose"], rec.purpose);
+            assert_eq!(r["integrators"], serde_json::json!(rec.integrators));
+            assert_eq!(r["evidence"], rec.evidence);
+        }
+    }
+}
+
+#[test]
+fn text_listing_recommends_methods_by_purpose_for_every_builtin_scene() {
+    let out = tumble(&["scenes"]);
+    assert!(out.status.success());
+    let text = String::from_utf8(out.stdout).unwrap();
+    for scene in builtin() {
+        let recs = scene.recommendations();
+        assert!(
+            !recs.is_empty(),
+            "{} has no recommendation",
+            scene.info().name
+        );
+        for r in recs {
+            let line = format!(
+                "{}: {} ({})",
+                r.purpose,
+                r.integrators.join(", "),
+                r.evidence
+            );
+            assert!(text.contains(&line), "missing: {line}");
+        }
     }
 }
 

@@ -69,6 +69,6 @@ pub use lagrangian::{EulerLagrange, Lagrangian, LagrangianOde};
 pub use params::{Domain, ParamSpec, Params};
 pub use resolution::StepResolution;
 pub use scene::{
-    DenseRows, Guide, Observe, Recorder, RunOptions, RunPlan, RunSummary, Scene, SceneInfo,
-    StepControl,
+    DenseRows, Guide, Observe, Recommendation, Recorder, RunOptions, RunPlan, RunSummary, Scene,
+    SceneInfo, StepControl,
 };

@@ -579,6 +579,23 @@ pub enum Guide {
 /// ([`Scene::initial_rate`]): about 12 steps a turn.
 pub const MAX_ANGLE_PER_STEP: f64 = 0.5;
 
+/// Which methods to use for one purpose on a scene, from measurements of its work–precision
+/// (`tumble work-precision SCENE`, and `--long` for long horizons) at its default parameters.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct Recommendation {
+    /// What the run is for: a band of final-time error over the measured horizon, or a long
+    /// horizon where the energy must not drift.
+    pub purpose: &'static str,
+    /// The methods, fastest first (registry names the scene runs).
+    pub integrators: &'static [&'static str],
+    /// The finest final-time error of the band at the default parameters and horizon, which
+    /// the first method reaches (`None`: a purpose that is not an error band, such as a long
+    /// horizon). The test `recommended_methods_reach_their_error_bands` holds it to that.
+    pub finest_error: Option<f64>,
+    /// The measurement behind it: times or errors of the methods and of DOP853 beside them.
+    pub evidence: &'static str,
+}
+
 /// A built-in scene.
 pub trait Scene: Sync {
     /// Its documentation.
@@ -642,6 +659,12 @@ pub trait Scene: Sync {
     /// horizontal, spanning `x_range`), the others fixed at `params`. Empty by default.
     fn map_guides(&self, _params: &Params, _axes: &[&str], _x_range: (f64, f64)) -> Vec<Guide> {
         Vec::new()
+    }
+
+    /// Which method to use, by purpose (accuracy band, long horizon), from the scene's measured
+    /// work–precision. Empty by default (a scene that has not been measured).
+    fn recommendations(&self) -> &'static [Recommendation] {
+        &[]
     }
 }
 

@@ -8,7 +8,7 @@
 use serde::Serialize;
 use tumble_integrators::registry::{MethodInfo, methods};
 use tumble_scenarios::scenes::builtin;
-use tumble_scenarios::{RunOptions, SceneError, SceneInfo, StepControl};
+use tumble_scenarios::{Recommendation, RunOptions, Scene, SceneError, StepControl};
 
 /// A registry entry with the built-in scenes it runs (`tumble integrators --json`,
 /// `tumble.integrators()`).
@@ -95,13 +95,16 @@ pub struct Entry {
     pub default_tol: Option<f64>,
     /// Default horizon (s).
     pub default_t_end: f64,
+    /// Which methods to use, by purpose, from the scene's measured work–precision.
+    pub recommended: &'static [Recommendation],
 }
 
 /// The catalogue entry of a scene.
 ///
 /// # Errors
 /// The scene's own default options do not resolve (a bug in the scene).
-pub fn entry(info: &SceneInfo) -> Result<Entry, SceneError> {
+pub fn entry(scene: &dyn Scene) -> Result<Entry, SceneError> {
+    let info = scene.info();
     let resolved = RunOptions::default().resolve(info)?;
     let (default_dt, default_tol) = match resolved.step {
         StepControl::Fixed(h) => (Some(h), None),
@@ -133,5 +136,6 @@ pub fn entry(info: &SceneInfo) -> Result<Entry, SceneError> {
         default_dt,
         default_tol,
         default_t_end: resolved.t_end,
+        recommended: scene.recommendations(),
     })
 }

@@ -24,7 +24,7 @@ use tumble_kinematics::frames::{EARTH_ANGULAR_SPEED, RotatingFrame, earth_rotati
 use crate::error::SceneError;
 use crate::lagrangian::Lagrangian;
 use crate::params::{Domain, ParamSpec, Params};
-use crate::scene::{Recorder, RunPlan, RunSummary, Scene, SceneInfo, run_vector};
+use crate::scene::{Recommendation, Recorder, RunPlan, RunSummary, Scene, SceneInfo, run_vector};
 
 /// The drop in the rotating frame.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -130,6 +130,16 @@ pub static CORIOLIS_DROP: SceneInfo = SceneInfo {
     rate_names: &[],
 };
 
+/// Which method for what, measured by `tumble work-precision coriolis-drop` at the default
+/// parameters on a 2-core machine with nothing else running.
+static CORIOLIS_DROP_RECOMMENDED: [Recommendation; 1] = [Recommendation {
+    purpose: "any accuracy",
+    finest_error: Some(1e-12),
+    integrators: &["rk4", "dp5"],
+    evidence: "the fall is nearly a polynomial in t: to 1e-12 at t = 60 s in 1.8 and 2.1 µs, \
+               dop853 5.2 µs",
+}];
+
 /// Runs `coriolis-drop` until the body lands (or the horizon).
 #[derive(Debug, Clone, Copy, Default)]
 pub struct CoriolisDropScene;
@@ -137,6 +147,10 @@ pub struct CoriolisDropScene;
 impl Scene for CoriolisDropScene {
     fn info(&self) -> &'static SceneInfo {
         &CORIOLIS_DROP
+    }
+
+    fn recommendations(&self) -> &'static [Recommendation] {
+        &CORIOLIS_DROP_RECOMMENDED
     }
 
     fn initial_rate(&self, params: &Params) -> Option<Result<f64, SceneError>> {

@@ -42,7 +42,8 @@ use crate::dispatch;
 use crate::error::SceneError;
 use crate::params::{Domain, ParamSpec, Params};
 use crate::scene::{
-    Recorder, RowObserver, RunPlan, RunSummary, Scene, SceneInfo, continuous_quaternion, run_vector,
+    Recommendation, Recorder, RowObserver, RunPlan, RunSummary, Scene, SceneInfo,
+    continuous_quaternion, run_vector,
 };
 
 /// Flattened state `(R column-major, m)`.
@@ -259,6 +260,37 @@ pub static FREE_BODY: SceneInfo = SceneInfo {
     rate_names: &["omega_x", "omega_y", "omega_z"],
 };
 
+/// Which method for what, measured by `tumble work-precision free-body` (and `--long`) at the
+/// default parameters on a 2-core machine with nothing else running.
+static FREE_BODY_RECOMMENDED: [Recommendation; 4] = [
+    Recommendation {
+        purpose: "any accuracy",
+        finest_error: Some(1e-12),
+        integrators: &["split-exact2"],
+        evidence: "the torque-free flow is exact in this splitting: 4.3 µs to t = 20 s, \
+                   1.7e-14 at the default step",
+    },
+    Recommendation {
+        purpose: "a general method, error 1e-4 … 1e-8 at t = 20 s",
+        finest_error: Some(1e-8),
+        integrators: &["vern8"],
+        evidence: "to 1e-8 in 23 µs, dop853 27 µs",
+    },
+    Recommendation {
+        purpose: "a general method, error 1e-8 … 1e-12",
+        finest_error: Some(1e-12),
+        integrators: &["vern9", "vern8"],
+        evidence: "to 1e-12 in 53 and 57 µs, dop853 71 µs",
+    },
+    Recommendation {
+        purpose: "energy over 10^6 steps and more",
+        finest_error: None,
+        integrators: &["lgvi", "split6"],
+        evidence: "2^20 steps of 0.01 s: energy and R^T R at round-off, spatial momentum exact \
+                   (lgvi); vern9 at tol 1e-13 drifts as t^0.94",
+    },
+];
+
 /// The body with principal moments `moments`; a non-physical inertia (a moment not positive, or
 /// the triangle inequality `I1 + I2 ≥ I3` violated) is a parameter error naming I1, I2, I3.
 pub(crate) fn inertia_body(moments: Vector3<f64>) -> Result<FreeRigidBody, SceneError> {
@@ -318,6 +350,10 @@ pub struct FreeBodyScene;
 impl Scene for FreeBodyScene {
     fn info(&self) -> &'static SceneInfo {
         &FREE_BODY
+    }
+
+    fn recommendations(&self) -> &'static [Recommendation] {
+        &FREE_BODY_RECOMMENDED
     }
 
     fn initial_rate(&self, params: &Params) -> Option<Result<f64, SceneError>> {
@@ -407,6 +443,34 @@ pub static DZHANIBEKOV: SceneInfo = SceneInfo {
     rate_names: &["omega_x", "omega_y", "omega_z"],
 };
 
+/// Which method for what, measured by `tumble work-precision dzhanibekov` (and `--long`) at the
+/// default parameters on a 2-core machine with nothing else running. The flips amplify errors:
+/// no general method gets below about 1e-11 at t = 10 s.
+static DZHANIBEKOV_RECOMMENDED: [Recommendation; 3] = [
+    Recommendation {
+        purpose: "any accuracy",
+        finest_error: None,
+        integrators: &["exact"],
+        evidence: "the closed-form solution in Jacobi elliptic functions, evaluated at each \
+                   output time; split-exact2, exact in one step, loses 1.8e-8 to round-off \
+                   at dt = 1e-3, which the flips amplify",
+    },
+    Recommendation {
+        purpose: "a general method, error 1e-4 … 1e-10 at t = 10 s",
+        finest_error: Some(1e-10),
+        integrators: &["vern7", "vern9"],
+        evidence: "to 1e-8 in 214 and 251 µs, dop853 323 µs",
+    },
+    Recommendation {
+        purpose: "energy over 10^6 steps and more",
+        finest_error: None,
+        integrators: &["dmv", "gauss2", "vern9"],
+        evidence: "2^20 steps of 0.001 s: dmv and gauss2 9.1e-16 bounded, with the momentum \
+                   map exact; vern9 at tol 1e-13 stays at 1.5e-15 here, at a sixth of \
+                   gauss2's cost",
+    },
+];
+
 /// Runs `dzhanibekov`.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct DzhanibekovScene;
@@ -432,6 +496,10 @@ impl DzhanibekovScene {
 impl Scene for DzhanibekovScene {
     fn info(&self) -> &'static SceneInfo {
         &DZHANIBEKOV
+    }
+
+    fn recommendations(&self) -> &'static [Recommendation] {
+        &DZHANIBEKOV_RECOMMENDED
     }
 
     fn initial_rate(&self, params: &Params) -> Option<Result<f64, SceneError>> {
@@ -534,6 +602,29 @@ pub static HEAVY_TOP: SceneInfo = SceneInfo {
     rate_names: &["omega_x", "omega_y", "omega_z"],
 };
 
+/// Which method for what, measured by `tumble work-precision heavy-top` (and `--long`) at the
+/// default parameters on a 2-core machine with nothing else running.
+static HEAVY_TOP_RECOMMENDED: [Recommendation; 3] = [
+    Recommendation {
+        purpose: "error 1e-4 … 1e-8 at t = 10 s",
+        finest_error: Some(1e-8),
+        integrators: &["vern8"],
+        evidence: "to 1e-8 in 649 µs, dop853 789 µs",
+    },
+    Recommendation {
+        purpose: "error 1e-8 … 1e-12",
+        finest_error: Some(1e-12),
+        integrators: &["vern9"],
+        evidence: "to 1e-12 in 1.83 ms, dop853 2.47 ms",
+    },
+    Recommendation {
+        purpose: "energy over 10^6 steps and more",
+        finest_error: None,
+        integrators: &["split6", "lgvi6"],
+        evidence: "2^20 steps of 0.001 s: energy at round-off (1.8e-16), L·e3 exact (lgvi6)",
+    },
+];
+
 /// Runs `heavy-top`.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct HeavyTopScene;
@@ -557,6 +648,10 @@ impl HeavyTopScene {
 impl Scene for HeavyTopScene {
     fn info(&self) -> &'static SceneInfo {
         &HEAVY_TOP
+    }
+
+    fn recommendations(&self) -> &'static [Recommendation] {
+        &HEAVY_TOP_RECOMMENDED
     }
 
     fn initial_rate(&self, params: &Params) -> Option<Result<f64, SceneError>> {

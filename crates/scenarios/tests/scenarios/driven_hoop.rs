@@ -88,3 +88,25 @@ fn jacobi_integral_is_conserved() {
         0.1 * A * A * j1 - hoop_spin
     );
 }
+
+/// The closed-form energy the CSV reports is the Lagrangian's energy function `p·q̇ − L` by
+/// automatic differentiation, at states all round the hoop, with and without a bead and drive.
+#[test]
+fn closed_form_energy_equals_the_lagrangian_energy_function() {
+    for (m, omega) in [(0.1, 4.4), (0.0, 4.4), (0.3, 0.0), (2.0, 13.0)] {
+        let s = DrivenHoop::new(HoopParams::new(1.3, m, A, G).unwrap(), omega).unwrap();
+        let el = EulerLagrange::new(s);
+        for k in 0..24 {
+            let alpha = -3.0 + 0.27 * f64::from(k);
+            let alpha_dot = 2.5 * (0.7 * f64::from(k)).sin();
+            let t = 0.37 * f64::from(k);
+            let ad = el.energy(t, &Vector1::new(alpha), &Vector1::new(alpha_dot));
+            let closed = s.energy(alpha, alpha_dot);
+            let scale = 1.0 + ad.abs();
+            assert!(
+                (closed - ad).abs() <= 8.0 * f64::EPSILON * scale,
+                "m = {m}, ω = {omega}, α = {alpha}, α̇ = {alpha_dot}: {closed} vs {ad}"
+            );
+        }
+    }
+}

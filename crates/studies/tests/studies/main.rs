@@ -6,6 +6,7 @@ mod fuzz;
 mod hard_cases;
 mod max_tilt_reference;
 mod method_agreement;
+mod recommendations;
 mod refinement;
 mod results_table;
 mod work_precision;
