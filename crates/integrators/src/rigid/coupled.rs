@@ -293,7 +293,9 @@ pub fn coupled_potential_gradient<L: CoupledLagrangian<N> + ?Sized, const N: usi
     grad_of(&v)
 }
 
-/// `∂T/∂q` at fixed velocities `(Ω, q̇)`, by automatic differentiation.
+/// `∂T/∂q` at fixed velocities `(Ω, q̇)`: [`KineticJet::configuration_gradient`] of the model's
+/// [`CoupledLagrangian::kinetic_jet`] (closed forms where the model gives them, automatic
+/// differentiation otherwise).
 #[must_use]
 pub fn coupled_kinetic_gradient<L: CoupledLagrangian<N> + ?Sized, const N: usize>(
     model: &L,
@@ -301,14 +303,7 @@ pub fn coupled_kinetic_gradient<L: CoupledLagrangian<N> + ?Sized, const N: usize
     omega: &Vector3<f64>,
     qdot: &SVector<f64, N>,
 ) -> SVector<f64, N> {
-    let qd = SVector::<Grad<N>, N>::from_fn(|i, _| grad_var::<N>(q[i], i));
-    let blocks = model.kinetic(&qd);
-    let (t, _, _) = kinetic_terms(
-        &blocks,
-        &omega.map(Grad::<N>::from),
-        &qdot.map(Grad::<N>::from),
-    );
-    grad_of(&t)
+    model.kinetic_jet(q).configuration_gradient(omega, qdot)
 }
 
 /// Solves `A x = b` by Gaussian elimination with partial pivoting (fixed size, on the stack).

@@ -7,7 +7,7 @@ use std::f64::consts::FRAC_PI_2;
 use nalgebra::{Matrix3, SVector, Vector3};
 use tumble_integrators::rigid::{
     CoupledLagrangian, CoupledLgvi, CoupledState, KineticBlocks, Scalar, coupled_energy,
-    coupled_state_from_velocities,
+    coupled_kinetic_gradient, coupled_state_from_velocities,
 };
 use tumble_integrators::{
     Driver, ExplicitRungeKutta, Flow, FnObserver, NoObserver, Status, Stepper, Tolerances, gauss12,
@@ -300,4 +300,32 @@ fn closed_form_lgvi_steps_match_the_automatic_differentiation_ones() {
         d < 1e-12,
         "closed form and AD LGVI differ by {d:e} after 200 steps"
     );
+}
+
+/// `∂T/∂α` at fixed velocities, as `coupled_kinetic_gradient` gives it from the closed-form jet,
+/// is the central difference of `T = ½ Ω·JΩ + Ω·B α̇ + ½ M α̇²` built from the blocks.
+#[test]
+fn kinetic_gradient_is_the_central_difference_of_the_kinetic_energy() {
+    let model = FreeHoop {
+        hoop: HoopParams::new(1.3, 0.4, 0.7, 9.81).unwrap(),
+    };
+    let omega = Vector3::new(0.7, -1.9, 2.3);
+    let qdot = SVector::<f64, 1>::new(-1.4);
+    let kinetic = |alpha: f64| {
+        let k: KineticBlocks<f64, 1> = model.kinetic(&SVector::<f64, 1>::new(alpha));
+        0.5 * omega.dot(&(k.rotational * omega))
+            + omega.dot(&(k.coupling * qdot))
+            + 0.5 * (qdot.transpose() * k.internal * qdot)[0]
+    };
+    for k in 0..30 {
+        let alpha = -4.0 + 0.29 * f64::from(k);
+        let g = coupled_kinetic_gradient(&model, &SVector::<f64, 1>::new(alpha), &omega, &qdot);
+        let d = 1e-5;
+        let fd = (kinetic(alpha + d) - kinetic(alpha - d)) / (2.0 * d);
+        assert!(
+            (g[0] - fd).abs() <= 1e-8 * (1.0 + fd.abs()),
+            "alpha {alpha}: {} vs {fd}",
+            g[0]
+        );
+    }
 }
