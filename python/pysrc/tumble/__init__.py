@@ -318,7 +318,8 @@ def _mesh_array(name: str, value: Any, rows: str, floating: bool) -> np.ndarray:
 def scenes() -> List[Dict[str, Any]]:
     """The built-in scenes, as ``tumble scenes --json`` lists them: name, summary, coordinates,
     columns, parameters (name, default, unit, domain, description), conserved quantities,
-    oracle, applicable integrators and the default run."""
+    oracle, applicable integrators, the default run and ``recommended``: the methods for each
+    purpose (an error band, a long horizon) with the measurement behind them."""
     return json.loads(_tumble.scenes_json())
 
 
