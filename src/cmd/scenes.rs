@@ -114,12 +114,7 @@ fn text(entries: &[Entry]) -> String {
             } else {
                 "            "
             };
-            out += &format!(
-                "  {label} {}: {} ({})\n",
-                r.purpose,
-                r.integrators.join(", "),
-                r.evidence
-            );
+            out += &format!("  {label} {r}\n");
         }
         out += &format!("  integrators  {}\n", e.integrators.join(", "));
         if !e.composition_bases.is_empty() {

@@ -82,12 +82,7 @@ fn text_listing_recommends_methods_by_purpose_for_every_builtin_scene() {
             scene.info().name
         );
         for r in recs {
-            let line = format!(
-                "{}: {} ({})",
-                r.purpose,
-                r.integrators.join(", "),
-                r.evidence
-            );
+            let line = r.to_string();
             assert!(text.contains(&line), "missing: {line}");
         }
     }

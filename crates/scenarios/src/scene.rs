@@ -596,6 +596,19 @@ pub struct Recommendation {
     pub evidence: &'static str,
 }
 
+/// `purpose: method, method (evidence)`, the line `tumble scenes` prints.
+impl std::fmt::Display for Recommendation {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "{}: {} ({})",
+            self.purpose,
+            self.integrators.join(", "),
+            self.evidence
+        )
+    }
+}
+
 /// A built-in scene.
 pub trait Scene: Sync {
     /// Its documentation.

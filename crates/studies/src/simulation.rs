@@ -471,6 +471,7 @@ impl Scene for Interruptible {
     fn map_guides(&self, params: &Params, axes: &[&str], x_range: (f64, f64)) -> Vec<Guide> {
         self.scene.map_guides(params, axes, x_range)
     }
+
     fn recommendations(&self) -> &'static [tumble_scenarios::Recommendation] {
         self.scene.recommendations()
     }

@@ -7,8 +7,8 @@
 
 use tumble_integrators::registry;
 use tumble_scenarios::scenes::builtin;
-use tumble_scenarios::{Observe, RunOptions, StepControl};
-use tumble_studies::work_precision::{final_state, reference, state_error};
+use tumble_scenarios::{Observe, StepControl};
+use tumble_studies::work_precision::{final_state, plan, reference, state_error};
 
 #[test]
 fn recommended_methods_run_their_scenes() {
@@ -56,14 +56,7 @@ fn recommended_methods_reach_their_error_bands() {
             let errors: Vec<f64> = settings
                 .iter()
                 .map(|&step| {
-                    let plan = RunOptions {
-                        integrator: Some(name.to_string()),
-                        step: Some(step),
-                        observe: Observe::Ends,
-                        ..RunOptions::default()
-                    }
-                    .resolve(info)
-                    .unwrap();
+                    let plan = plan(info, name, step, t_end, Observe::Ends).unwrap();
                     let (state, _) = final_state(*scene, &params, &plan).unwrap();
                     state_error(info, &state, &reference.state)
                 })
