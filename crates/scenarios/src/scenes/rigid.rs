@@ -452,8 +452,8 @@ static DZHANIBEKOV_RECOMMENDED: [Recommendation; 3] = [
         finest_error: None,
         integrators: &["exact"],
         evidence: "the closed-form solution in Jacobi elliptic functions, evaluated at each \
-                   output time; split-exact2, exact in one step, loses 1.8e-8 to round-off \
-                   at dt = 1e-3, which the flips amplify",
+                   output time; split-exact2 is exact in a single step, but its round-off \
+                   grows as the step shrinks, amplified by the flips",
     },
     Recommendation {
         purpose: "a general method, error 1e-4 … 1e-10 at t = 10 s",
