@@ -2,7 +2,7 @@
 //!
 //! Names are lowercase, author + order (`yoshida6`, `kahan-li8`), Gauss–Legendre by order
 //! (`gauss2` … `gauss12`), rigid-body methods by what they are (`lgvi`, `lgvi4` … `lgvi10`,
-//! `rkmk4`, `cg3`, `split2` … `split8`, `split-exact2`, `dmv`, `exact`). To add a method, append a
+//! `lie-gauss4` … `lie-gauss10`, `rkmk4`, `cg3`, `split2` … `split8`, `split-exact2`, `dmv`, `exact`). To add a method, append a
 //! [`MethodInfo`] to [`METHODS`]; the registry tests check that names are unique and lowercase
 //! and that every composition and Gauss table is listed.
 //!
@@ -300,6 +300,19 @@ const fn composition_entry(
     }
 }
 
+const fn lie_gauss_entry(name: &'static str, stages: u32) -> MethodInfo {
+    MethodInfo {
+        name,
+        order: Order::Finite(2 * stages),
+        family: Family::LieGroup,
+        properties: LIE_VARIATIONAL,
+        stages,
+        problem: RIGID_BODY,
+        problems: &[ProblemKind::RigidBody, ProblemKind::CoupledRigidBody],
+        summary: "variational Lie–Gauss: Gauss–Legendre discrete Lagrangian in exponential coordinates centred at each step (Marsden & West 2001; Bogfjellmo & Marthinsen 2016), fixed-point stages",
+    }
+}
+
 /// A symmetric method of order 2 that the composition tables compose (`TABLE:BASE`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Base {
@@ -553,6 +566,10 @@ pub const METHODS: &[MethodInfo] = &[
         &composition::SOFRONIOU_SPALETTA10,
         "lgvi composed with sofroniou-spaletta10 (Sofroniou & Spaletta 2005, s35odr10)",
     ),
+    lie_gauss_entry("lie-gauss4", 2),
+    lie_gauss_entry("lie-gauss6", 3),
+    lie_gauss_entry("lie-gauss8", 4),
+    lie_gauss_entry("lie-gauss10", 5),
     MethodInfo {
         name: "rkmk4",
         order: Order::Finite(4),

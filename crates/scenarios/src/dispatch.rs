@@ -26,12 +26,13 @@
 use nalgebra::SVector;
 use tumble_integrators::registry;
 use tumble_integrators::rigid::{
-    CoupledLagrangian, CoupledLgvi, CoupledState, Dmv, EulerEquations, ExactSplitting,
-    ExactStepper, FreeRigidBody, GroupState, Lgvi, PrincipalAxisSplitting, RigidBody,
-    RigidBodyState, cg3, coupled_lgvi4, coupled_lgvi6, coupled_lgvi8, coupled_lgvi10, lgvi4, lgvi6,
-    lgvi8, lgvi10, rkmk4, split4, split6, split8,
+    CoupledLagrangian, CoupledLgvi, CoupledLieGauss, CoupledState, Dmv, EulerEquations,
+    ExactSplitting, ExactStepper, FreeRigidBody, GroupState, Lgvi, PrincipalAxisSplitting,
+    RigidBody, RigidBodyState, cg3, coupled_lgvi4, coupled_lgvi6, coupled_lgvi8, coupled_lgvi10,
+    lgvi4, lgvi6, lgvi8, lgvi10, lie_gauss4, lie_gauss6, lie_gauss8, lie_gauss10, rkmk4, split4,
+    split6, split8,
 };
-use tumble_integrators::tables::composition;
+use tumble_integrators::tables::{composition, gauss};
 use tumble_integrators::{
     Composition, Counted, Event, ExplicitRungeKutta, HamiltonianSplit, Observer, Ode, Order,
     ProblemKind, Report, Restepped, SeparableHamiltonian, Splitting, SplittingStepper, State,
@@ -208,6 +209,10 @@ where
             (ProblemKind::RigidBody, "lgvi6", _) => on!(body, lgvi6()),
             (ProblemKind::RigidBody, "lgvi8", _) => on!(body, lgvi8()),
             (ProblemKind::RigidBody, "lgvi10", _) => on!(body, lgvi10()),
+            (ProblemKind::RigidBody, "lie-gauss4", _) => on!(body, lie_gauss4()),
+            (ProblemKind::RigidBody, "lie-gauss6", _) => on!(body, lie_gauss6()),
+            (ProblemKind::RigidBody, "lie-gauss8", _) => on!(body, lie_gauss8()),
+            (ProblemKind::RigidBody, "lie-gauss10", _) => on!(body, lie_gauss10()),
             (ProblemKind::RigidBody, "split2", _) => on!(body, PrincipalAxisSplitting::new()),
             (ProblemKind::RigidBody, "split4", _) => on!(body, split4()),
             (ProblemKind::RigidBody, "split6", _) => on!(body, split6()),
@@ -262,6 +267,18 @@ where
         (ProblemKind::CoupledRigidBody, "lgvi6", _) => on!(coupled_lgvi6::<N>()),
         (ProblemKind::CoupledRigidBody, "lgvi8", _) => on!(coupled_lgvi8::<N>()),
         (ProblemKind::CoupledRigidBody, "lgvi10", _) => on!(coupled_lgvi10::<N>()),
+        (ProblemKind::CoupledRigidBody, "lie-gauss4", _) => {
+            on!(CoupledLieGauss::<2, N>::new(&gauss::GAUSS4))
+        }
+        (ProblemKind::CoupledRigidBody, "lie-gauss6", _) => {
+            on!(CoupledLieGauss::<3, N>::new(&gauss::GAUSS6))
+        }
+        (ProblemKind::CoupledRigidBody, "lie-gauss8", _) => {
+            on!(CoupledLieGauss::<4, N>::new(&gauss::GAUSS8))
+        }
+        (ProblemKind::CoupledRigidBody, "lie-gauss10", _) => {
+            on!(CoupledLieGauss::<5, N>::new(&gauss::GAUSS10))
+        }
         (kind, _, _) => return Err(no_stepper(plan, kind.name())),
     };
     Ok(Outcome {

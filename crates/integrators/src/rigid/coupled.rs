@@ -378,7 +378,7 @@ pub fn coupled_velocities<L: CoupledLagrangian<N> + ?Sized, const N: usize>(
 }
 
 /// [`coupled_velocities`] for the blocks at `q`.
-fn velocities_of<const N: usize>(
+pub(crate) fn velocities_of<const N: usize>(
     blocks: &KineticBlocks<f64, N>,
     q: &SVector<f64, N>,
     momentum: &Vector3<f64>,

@@ -54,6 +54,7 @@ pub mod diagnostics;
 pub mod dmv;
 pub mod exact;
 pub mod lgvi;
+pub mod lie_gauss;
 pub mod lie_rk;
 pub mod problem;
 pub mod splitting;
@@ -69,6 +70,10 @@ pub use diagnostics::{CoupledMonitor, Deviations, Initial, RigidBodyMonitor};
 pub use dmv::Dmv;
 pub use exact::{ExactFlow, FreeRigidBody};
 pub use lgvi::{LGVI_COMPOSITIONS, Lgvi, lgvi4, lgvi6, lgvi8, lgvi10};
+pub use lie_gauss::{
+    CoupledLieGauss, LIE_GAUSS_METHODS, LieGauss, lie_gauss4, lie_gauss6, lie_gauss8, lie_gauss10,
+    lie_gauss12,
+};
 pub use lie_rk::{CROUCH_GROSSMAN3, CrouchGrossman, LieRkTableau, RKMK4, Rkmk, cg3, rkmk4};
 pub use problem::{EulerEquations, HeavyTop, LieVectorField, RigidBody};
 pub use splitting::{ExactSplitting, ExactStepper, PrincipalAxisSplitting, split4, split6, split8};

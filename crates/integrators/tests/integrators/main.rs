@@ -11,6 +11,7 @@ mod error_control_rigid_body;
 mod exact_free_rigid_body;
 mod heavy_top_simo_wong;
 mod lgvi_long_run;
+mod lie_gauss_variational;
 mod lie_group_methods_stay_on_so3;
 mod long_run_brouwer;
 mod observed_order;

@@ -6,7 +6,7 @@ use tumble_integrators::rigid::{
     CoupledLagrangian, CoupledLgvi, CoupledState, CoupledVectorField, Dmv, EulerEquations,
     ExactSplitting, ExactStepper, FreeRigidBody, GroupState, HeavyTop, KineticBlocks, Lgvi,
     PrincipalAxisSplitting, RigidBody, RigidBodyState, Scalar, cg3, lgvi4, lgvi6, lgvi8, lgvi10,
-    rkmk4, split4, split6, split8,
+    lie_gauss4, lie_gauss6, lie_gauss8, lie_gauss10, lie_gauss12, rkmk4, split4, split6, split8,
 };
 use tumble_integrators::{Driver, Error, FnOde, NoObserver, Observer, Stepper, gauss12};
 use tumble_kinematics::so3::{exp, hat};
@@ -117,6 +117,11 @@ pub fn solve_body<B: RigidBody>(
         "lgvi6" => run(&mut lgvi6(), problem, s0, t_end, h, obs),
         "lgvi8" => run(&mut lgvi8(), problem, s0, t_end, h, obs),
         "lgvi10" => run(&mut lgvi10(), problem, s0, t_end, h, obs),
+        "lie-gauss4" => run(&mut lie_gauss4(), problem, s0, t_end, h, obs),
+        "lie-gauss6" => run(&mut lie_gauss6(), problem, s0, t_end, h, obs),
+        "lie-gauss8" => run(&mut lie_gauss8(), problem, s0, t_end, h, obs),
+        "lie-gauss10" => run(&mut lie_gauss10(), problem, s0, t_end, h, obs),
+        "lie-gauss12" => run(&mut lie_gauss12(), problem, s0, t_end, h, obs),
         "split2" => run(
             &mut PrincipalAxisSplitting::new(),
             problem,
