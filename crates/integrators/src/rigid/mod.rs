@@ -11,6 +11,7 @@
 //! | [`problem`] | [`RigidBody`] (inertia `J`, potential `V(R)`, moment `M(R)`), [`HeavyTop`], [`LieVectorField`], [`EulerEquations`] | |
 //! | [`lgvi`] | Lee–Leok–McClamroch Lie group variational integrator, Newton on the Cayley vector | `lgvi` |
 //! | [`coupled`] | bodies coupled to `N` coordinates: [`CoupledLagrangian`], variational [`CoupledLgvi`], [`CoupledVectorField`] | |
+//! | [`lie_gauss`] | variational Lie–Gauss methods: Gauss–Legendre discrete Lagrangian in exponential coordinates, any even order, on rigid and coupled bodies ([`LieGauss`], [`CoupledLieGauss`]) | `lie-gauss4` … `lie-gauss10` |
 //! | [`lie_rk`] | Runge–Kutta–Munthe-Kaas and Crouch–Grossman on `SO(3) × ℝᴺ` | `rkmk4`, `cg3` |
 //! | [`splitting`] | principal-axis rotations + kicks (Strang, composed to 4/6/8), kicks + exact free flow | `split2` … `split8`, `split-exact2` |
 //! | [`dmv`] | discrete Moser–Veselov | `dmv` |
@@ -18,12 +19,12 @@
 //!
 //! # Which method for which problem
 //!
-//! - A [`RigidBody`] (any `J`, any potential `V(R)`) on [`RigidBodyState`]: [`Lgvi`],
+//! - A [`RigidBody`] (any `J`, any potential `V(R)`) on [`RigidBodyState`]: [`Lgvi`], [`LieGauss`],
 //!   [`PrincipalAxisSplitting`] and its compositions [`split4`], [`split6`], [`split8`],
 //!   [`ExactSplitting`]; through [`EulerEquations`] on [`GroupState<3>`]: [`rkmk4`], [`cg3`].
 //! - The free body ([`FreeRigidBody`]): additionally [`Dmv`] and [`ExactStepper`].
 //! - A body coupled to `N` coordinates: implement [`CoupledLagrangian<N>`] once; then
-//!   [`CoupledLgvi<N>`] integrates [`CoupledState<N>`] variationally, and
+//!   [`CoupledLgvi<N>`] and [`CoupledLieGauss`] integrate [`CoupledState<N>`] variationally, and
 //!   [`CoupledVectorField`] on [`GroupState<Y>`] (`Y = 3 + 2N`) feeds `rkmk4` and `cg3`.
 //! - Any vector field on `SO(3) × ℝᴺ`: implement [`LieVectorField<N>`]; use [`rkmk4`], [`cg3`].
 //!
