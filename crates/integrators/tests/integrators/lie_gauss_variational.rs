@@ -15,34 +15,9 @@ use tumble_integrators::rigid::{
 };
 use tumble_integrators::tables::GaussTableau;
 use tumble_integrators::tables::gauss::{GAUSS4, GAUSS6, GAUSS8, GAUSS10};
-use tumble_integrators::verification::{OrderFit, OrderStudy};
 use tumble_integrators::{Error, NoObserver};
 
 use crate::rigid_support::*;
-
-/// `(name, nominal order, first number of steps, number of step sizes, ratio)`.
-type Plan = (&'static str, f64, f64, usize, f64);
-
-fn study(plan: &Plan, span: f64, error: impl FnMut(f64) -> Result<f64, Error>) -> OrderFit {
-    let (name, nominal, n0, count, ratio) = *plan;
-    let fit = OrderStudy::new(span / n0, count)
-        .with_ratio(ratio)
-        .on_span(span)
-        .run(error)
-        .unwrap();
-    let errors: Vec<String> = fit
-        .points
-        .iter()
-        .map(|(h, e)| format!("{h:.3e}:{e:.2e}"))
-        .collect();
-    eprintln!(
-        "{name}: observed order {:.3} (nominal {nominal}) from {} points [{}]",
-        fit.slope,
-        fit.used_points(),
-        errors.join(" ")
-    );
-    fit
-}
 
 fn check_all(plans: &[Plan], span: f64, mut error: impl FnMut(&str, f64) -> Result<f64, Error>) {
     let mut failures = vec![];

@@ -21,36 +21,11 @@ use tumble_integrators::rigid::{
 };
 use tumble_integrators::tables::CompositionTable;
 use tumble_integrators::tables::composition::{KAHAN_LI6, KAHAN_LI8, YOSHIDA4};
-use tumble_integrators::verification::{OrderFit, OrderStudy};
 use tumble_integrators::{Composition, Error, NoObserver};
 
 use crate::rigid_support::*;
 
 const T_FREE: f64 = 5.0;
-
-/// `(name, nominal order, first number of steps, number of step sizes, ratio)`.
-type Plan = (&'static str, f64, f64, usize, f64);
-
-fn study(plan: &Plan, span: f64, error: impl FnMut(f64) -> Result<f64, Error>) -> OrderFit {
-    let (name, nominal, n0, count, ratio) = *plan;
-    let fit = OrderStudy::new(span / n0, count)
-        .with_ratio(ratio)
-        .on_span(span)
-        .run(error)
-        .unwrap();
-    let errors: Vec<String> = fit
-        .points
-        .iter()
-        .map(|(h, e)| format!("{h:.3e}:{e:.2e}"))
-        .collect();
-    eprintln!(
-        "{name}: observed order {:.3} (nominal {nominal}) from {} points [{}]",
-        fit.slope,
-        fit.used_points(),
-        errors.join(" ")
-    );
-    fit
-}
 
 fn free_error(name: &str, body: &FreeRigidBody, h: f64) -> Result<f64, Error> {
     let s0 = initial_state();

@@ -8,6 +8,7 @@ use tumble_integrators::rigid::{
     PrincipalAxisSplitting, RigidBody, RigidBodyState, Scalar, cg3, lgvi4, lgvi6, lgvi8, lgvi10,
     lie_gauss4, lie_gauss6, lie_gauss8, lie_gauss10, lie_gauss12, rkmk4, split4, split6, split8,
 };
+use tumble_integrators::verification::{OrderFit, OrderStudy};
 use tumble_integrators::{Driver, Error, FnOde, NoObserver, Observer, Stepper, gauss12};
 use tumble_kinematics::so3::{exp, hat};
 
@@ -293,4 +294,29 @@ pub fn hoop_lgvi(
         h,
         &mut NoObserver,
     )
+}
+
+/// `(name, nominal order, first number of steps, number of step sizes, ratio)`.
+pub type Plan = (&'static str, f64, f64, usize, f64);
+
+/// Runs an order study of `plan` over `span` and prints its points.
+pub fn study(plan: &Plan, span: f64, error: impl FnMut(f64) -> Result<f64, Error>) -> OrderFit {
+    let (name, nominal, n0, count, ratio) = *plan;
+    let fit = OrderStudy::new(span / n0, count)
+        .with_ratio(ratio)
+        .on_span(span)
+        .run(error)
+        .unwrap();
+    let errors: Vec<String> = fit
+        .points
+        .iter()
+        .map(|(h, e)| format!("{h:.3e}:{e:.2e}"))
+        .collect();
+    eprintln!(
+        "{name}: observed order {:.3} (nominal {nominal}) from {} points [{}]",
+        fit.slope,
+        fit.used_points(),
+        errors.join(" ")
+    );
+    fit
 }
