@@ -410,7 +410,7 @@ static FREE_HOOP_RECOMMENDED: [Recommendation; 3] = [
         finest_error: None,
         integrators: &["gauss8", "lgvi6", "lie-gauss6"],
         evidence: "2^20 steps of 0.01 s: gauss8 at round-off, lgvi6 6.2e-12 bounded with L_z \
-                   exact, lie-gauss6 1.2e-15 at 5x lgvi6's cost; vern9 at tol 1e-13 drifts as \
+                   exact, lie-gauss6 1.7e-15 at 2.5x lgvi6's cost; vern9 at tol 1e-13 drifts as \
                    t^0.99",
     },
 ];
