@@ -19,17 +19,6 @@ use tumble_integrators::{Error, NoObserver};
 
 use crate::rigid_support::*;
 
-fn check_all(plans: &[Plan], span: f64, mut error: impl FnMut(&str, f64) -> Result<f64, Error>) {
-    let mut failures = vec![];
-    for plan in plans {
-        let fit = study(plan, span, |h| error(plan.0, h));
-        if let Err(e) = fit.check(plan.1, 0.3) {
-            failures.push(format!("{}: {e}", plan.0));
-        }
-    }
-    assert!(failures.is_empty(), "{failures:#?}");
-}
-
 const R2: f64 = std::f64::consts::SQRT_2;
 /// `2^(1/4)`.
 const R4: f64 = 1.189_207_115_002_721;

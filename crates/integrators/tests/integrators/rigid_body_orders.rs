@@ -48,14 +48,7 @@ fn every_rigid_body_method_reaches_its_order_on_an_asymmetric_free_body() {
         ("split6", 6.0, 4.0, 7, r),
         ("split8", 8.0, 6.0, 6, 2f64.cbrt()),
     ];
-    let mut failures = vec![];
-    for plan in &plans {
-        let fit = study(plan, T_FREE, |h| free_error(plan.0, &body, h));
-        if let Err(e) = fit.check(plan.1, 0.3) {
-            failures.push(format!("{}: {e}", plan.0));
-        }
-    }
-    assert!(failures.is_empty(), "{failures:#?}");
+    check_all(&plans, T_FREE, |name, h| free_error(name, &body, h));
 }
 
 #[test]
@@ -160,17 +153,10 @@ fn heavy_top_methods_reach_their_order_against_gauss_legendre() {
         ("split8", 8.0, 6.0, 7, r),
         ("split-exact2", 2.0, 10.0, 6, 2.0),
     ];
-    let mut failures = vec![];
-    for plan in &plans {
-        let fit = study(plan, t_end, |h| {
-            let s = solve_body(plan.0, &top, &s0, t_end, h)?;
-            Ok(state_error(&s, &reference, s0.momentum.norm()))
-        });
-        if let Err(e) = fit.check(plan.1, 0.3) {
-            failures.push(format!("{}: {e}", plan.0));
-        }
-    }
-    assert!(failures.is_empty(), "{failures:#?}");
+    check_all(&plans, t_end, |name, h| {
+        let s = solve_body(name, &top, &s0, t_end, h)?;
+        Ok(state_error(&s, &reference, s0.momentum.norm()))
+    });
 }
 
 #[test]
@@ -213,14 +199,9 @@ const LGVI_FREE_PLANS: [Plan; 4] = [
 #[test]
 fn lgvi4_to_lgvi10_reach_orders_four_to_ten_on_the_free_body_against_the_exact_flow() {
     let body = asymmetric_body();
-    let mut failures = vec![];
-    for plan in &LGVI_FREE_PLANS {
-        let fit = study(plan, T_FREE, |h| free_error(plan.0, &body, h));
-        if let Err(e) = fit.check(plan.1, 0.3) {
-            failures.push(format!("{}: {e}", plan.0));
-        }
-    }
-    assert!(failures.is_empty(), "{failures:#?}");
+    check_all(&LGVI_FREE_PLANS, T_FREE, |name, h| {
+        free_error(name, &body, h)
+    });
 }
 
 #[test]
@@ -237,17 +218,10 @@ fn lgvi4_to_lgvi10_reach_orders_four_to_ten_on_the_heavy_top_against_gauss_legen
         ("lgvi8", 8.0, 6.0, 7, std::f64::consts::SQRT_2),
         ("lgvi10", 10.0, 6.0, 8, 1.189_207_115_002_721),
     ];
-    let mut failures = vec![];
-    for plan in &plans {
-        let fit = study(plan, t_end, |h| {
-            let s = solve_body(plan.0, &top, &s0, t_end, h)?;
-            Ok(state_error(&s, &reference, s0.momentum.norm()))
-        });
-        if let Err(e) = fit.check(plan.1, 0.3) {
-            failures.push(format!("{}: {e}", plan.0));
-        }
-    }
-    assert!(failures.is_empty(), "{failures:#?}");
+    check_all(&plans, t_end, |name, h| {
+        let s = solve_body(name, &top, &s0, t_end, h)?;
+        Ok(state_error(&s, &reference, s0.momentum.norm()))
+    });
 }
 
 fn coupled_composed(name: &str) -> Composition<CoupledLgvi<1>> {
@@ -274,24 +248,17 @@ fn coupled_lgvi4_to_lgvi8_reach_orders_four_to_eight_on_the_bead_on_a_hoop() {
         ("lgvi6", 6.0, 20.0, 7, std::f64::consts::SQRT_2),
         ("lgvi8", 8.0, 16.0, 7, std::f64::consts::SQRT_2),
     ];
-    let mut failures = vec![];
-    for plan in &plans {
-        let fit = study(plan, t_end, |h| {
-            let s = run(
-                &mut coupled_composed(plan.0),
-                &model,
-                s0,
-                t_end,
-                h,
-                &mut NoObserver,
-            )?;
-            Ok(coupled_error(&s, &reference))
-        });
-        if let Err(e) = fit.check(plan.1, 0.3) {
-            failures.push(format!("{}: {e}", plan.0));
-        }
-    }
-    assert!(failures.is_empty(), "{failures:#?}");
+    check_all(&plans, t_end, |name, h| {
+        let s = run(
+            &mut coupled_composed(name),
+            &model,
+            s0,
+            t_end,
+            h,
+            &mut NoObserver,
+        )?;
+        Ok(coupled_error(&s, &reference))
+    });
 }
 
 #[test]

@@ -320,3 +320,19 @@ pub fn study(plan: &Plan, span: f64, error: impl FnMut(f64) -> Result<f64, Error
     );
     fit
 }
+
+/// Runs an order study of every plan over `span` and asserts each order within 0.3.
+pub fn check_all(
+    plans: &[Plan],
+    span: f64,
+    mut error: impl FnMut(&str, f64) -> Result<f64, Error>,
+) {
+    let mut failures = vec![];
+    for plan in plans {
+        let fit = study(plan, span, |h| error(plan.0, h));
+        if let Err(e) = fit.check(plan.1, 0.3) {
+            failures.push(format!("{}: {e}", plan.0));
+        }
+    }
+    assert!(failures.is_empty(), "{failures:#?}");
+}
