@@ -55,6 +55,12 @@ pub struct Args {
     /// Steps of a long run (at the scene's default step).
     #[arg(long = "long-steps", value_name = "N", default_value_t = 1 << 20)]
     pub long_steps: u64,
+    /// With `--long`: compare at equal cost from the adaptive side. The adaptive methods named
+    /// in `--integrators` (or the scene's adaptive method of highest order) run at this
+    /// tolerance, and every fixed-step method at the step whose cost per simulated second
+    /// matches the first of them (probed, then corrected once), over the same horizon.
+    #[arg(long = "long-tol", value_name = "TOL", requires = "long")]
+    pub long_tol: Option<f64>,
     /// Size, font size, resolution and SVG text of the figures.
     #[command(flatten)]
     pub figure: super::args::FigureArgs,
@@ -437,6 +443,17 @@ fn long(
             info.integrators().join(", ")
         );
     }
+    if let Some(tol) = args.long_tol
+        && !(tol > 0.0 && tol < 1.0)
+    {
+        bail!("--long-tol {tol}: a tolerance between 0 and 1");
+    }
+    let named_adaptive: Vec<String> = args
+        .integrators
+        .iter()
+        .filter(|n| registry::find(n).is_ok_and(|m| m.properties.adaptive))
+        .cloned()
+        .collect();
     let h = info.default_step;
     let t_end = h * args.long_steps as f64;
     output::check_folder(dir, &folder_files("long"))?;
@@ -449,12 +466,61 @@ fn long(
         .iter()
         .map(|m| (m.clone(), StepControl::Fixed(h)))
         .collect();
-    // The adaptive method of highest order at the cost of the scene's default method (or the
-    // first one), probed on 2000 steps.
     let adaptive = work_precision::highest_order(info, |m| m.properties.adaptive).map(|m| m.name);
     let mut matched = String::new();
-    if let Some(a) = adaptive {
-        let probe = (2000.0 * h).min(t_end);
+    let probe = (2000.0 * h).min(t_end);
+    if let Some(tol) = args.long_tol {
+        // Equal cost from the adaptive side: each fixed-step method at the step that costs
+        // what the first adaptive method costs at `tol`.
+        let adaptive: Vec<String> = if named_adaptive.is_empty() {
+            adaptive.map(str::to_string).into_iter().collect()
+        } else {
+            named_adaptive
+        };
+        let Some(first) = adaptive.first() else {
+            bail!("{}: --long-tol needs an adaptive method", info.name);
+        };
+        let target = work_precision::cost_per_second(
+            scene,
+            params,
+            first,
+            StepControl::Tolerance(tol),
+            probe,
+        );
+        stop_if_interrupted(dir)?;
+        let target = target?;
+        eprintln!(
+            "matching cost   {first} at tol = {tol:e} costs {} per simulated second",
+            seconds(target)
+        );
+        let mut kept = Vec::with_capacity(runs.len());
+        for (name, _) in runs {
+            let step = work_precision::matching_step(scene, params, &name, h, target, t_end);
+            stop_if_interrupted(dir)?;
+            match step {
+                Ok((step, cost)) => {
+                    eprintln!(
+                        "                {name} at dt = {step:.4e} s costs {} ({:.2}×)",
+                        seconds(cost),
+                        cost / target
+                    );
+                    kept.push((name, StepControl::Fixed(step)));
+                }
+                // A step as long as the budget allows can be beyond the method (a Newton
+                // solve that no longer converges): said, and the method left out.
+                Err(e) => eprintln!("                {name}: left out, no run at that cost: {e}"),
+            }
+        }
+        runs = kept;
+        matched = format!("fixed steps at the cost of {first} at tol = {tol:e}");
+        runs.extend(
+            adaptive
+                .into_iter()
+                .map(|a| (a, StepControl::Tolerance(tol))),
+        );
+    } else if let Some(a) = adaptive {
+        // The adaptive method of highest order at the cost of the scene's default method (or
+        // the first one), probed on 2000 steps.
         let base = if methods.iter().any(|m| m == info.default_integrator) {
             info.default_integrator.to_string()
         } else {
@@ -479,7 +545,14 @@ fn long(
         );
         runs.push((a.to_string(), StepControl::Tolerance(tol)));
     }
-    let results = work_precision::long_runs(scene, params, &runs, t_end, h, 240);
+    let first = runs
+        .iter()
+        .filter_map(|r| match r.1 {
+            StepControl::Fixed(step) => Some(step),
+            StepControl::Tolerance(_) => None,
+        })
+        .fold(h, f64::min);
+    let results = work_precision::long_runs(scene, params, &runs, t_end, first, 240);
     stop_if_interrupted(dir)?;
     let mut csv = csv::Writer::from_writer(Vec::new());
     csv.write_record(["integrator", "control", "t", "max_energy_rel_err"])?;
@@ -500,7 +573,12 @@ fn long(
             info.name, args.long_steps
         ),
         format!(
-            "dt = {h} s; {}{}",
+            "{}; {}{}",
+            if args.long_tol.is_some() {
+                "equal cost".to_string()
+            } else {
+                format!("dt = {h} s")
+            },
             plot::labels::parameters(params.iter()),
             if matched.is_empty() {
                 String::new()

@@ -137,6 +137,37 @@ fn long_mode_plots_the_energy_error_of_geometric_methods_and_a_matched_adaptive_
 }
 
 #[test]
+fn long_tol_runs_fixed_step_methods_at_the_cost_of_the_adaptive_one() {
+    let tmp = TempDir::new().unwrap();
+    let out = tumble_in(
+        tmp.path(),
+        &[
+            "work-precision",
+            "heavy-top",
+            "--long",
+            "--long-steps",
+            "2000",
+            "--long-tol",
+            "1e-6",
+            "--integrators",
+            "dop853,split-exact4",
+            "-o",
+            "long",
+        ],
+    );
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let err = text(&out.stderr);
+    assert!(err.contains("dop853 at tol = 1e-6 costs"), "{err}");
+    assert!(err.contains("split-exact4 at dt = "), "{err}");
+    let csv = std::fs::read_to_string(tmp.path().join("long/long.csv")).unwrap();
+    for row in ["split-exact4,dt = ", "dop853,tol = 1.0e-6,"] {
+        assert!(csv.lines().any(|l| l.starts_with(row)), "{row} missing");
+    }
+    // The matched step is not the scene's default one (1e-3 s).
+    assert!(!csv.contains("split-exact4,dt = 1.000e-3,"), "{csv}");
+}
+
+#[test]
 fn bad_flags_are_rejected_before_any_run() {
     let tmp = TempDir::new().unwrap();
     for (args, needle) in [
@@ -162,6 +193,14 @@ fn bad_flags_are_rejected_before_any_run() {
                 "10",
             ],
             "--long-steps 10",
+        ),
+        (
+            vec!["work-precision", "free-body", "--long", "--long-tol", "2"],
+            "--long-tol 2",
+        ),
+        (
+            vec!["work-precision", "free-body", "--long-tol", "1e-8"],
+            "--long",
         ),
     ] {
         let out = tumble_in(tmp.path(), &args);

@@ -2,7 +2,7 @@
 //!
 //! Names are lowercase, author + order (`yoshida6`, `kahan-li8`), Gauss–Legendre by order
 //! (`gauss2` … `gauss12`), rigid-body methods by what they are (`lgvi`, `lgvi4` … `lgvi10`,
-//! `lie-gauss4` … `lie-gauss10`, `rkmk4`, `cg3`, `split2` … `split8`, `split-exact2`, `dmv`, `exact`). To add a method, append a
+//! `lie-gauss4` … `lie-gauss10`, `rkmk4`, `cg3`, `split2` … `split8`, `split-exact2` … `split-exact8`, `dmv`, `exact`). To add a method, append a
 //! [`MethodInfo`] to [`METHODS`]; the registry tests check that names are unique and lowercase
 //! and that every composition and Gauss table is listed.
 //!
@@ -10,12 +10,13 @@
 //!
 //! A composition table (`yoshida4` … `sofroniou-spaletta10`) named alone composes Störmer–Verlet
 //! and needs a separable Hamiltonian. Composed with another symmetric method of order 2 — a
-//! *base* of [`BASES`]: `lgvi` (rigid bodies, coupled rigid bodies), `split2` (rigid bodies),
-//! `gauss2`, the implicit midpoint rule (any first-order ODE) — it is named `TABLE:BASE`
+//! *base* of [`BASES`]: `lgvi` (rigid bodies, coupled rigid bodies), `split2` and
+//! `split-exact2` (rigid bodies), `gauss2`, the implicit midpoint rule (any first-order ODE) — it is named `TABLE:BASE`
 //! (`kahan-li8:lgvi`, `yoshida6:split2`, `mclachlan4:gauss2`) and runs every problem its base
-//! runs, at the table's order. The short names `lgvi4` … `lgvi10` and `split4` … `split8` are
-//! the same methods as `mclachlan4:lgvi`, `kahan-li6:lgvi`, `kahan-li8:lgvi`,
-//! `sofroniou-spaletta10:lgvi` and `mclachlan4:split2` … `kahan-li8:split2`; [`composed`] splits
+//! runs, at the table's order. The short names `lgvi4` … `lgvi10`, `split4` … `split8` and
+//! `split-exact4` … `split-exact8` are the same methods as `mclachlan4:lgvi`,
+//! `kahan-li6:lgvi`, `kahan-li8:lgvi`, `sofroniou-spaletta10:lgvi`, `mclachlan4:split2` …
+//! `kahan-li8:split2` and `mclachlan4:split-exact2` … `kahan-li8:split-exact2`; [`composed`] splits
 //! a `TABLE:BASE` name into its table and base.
 //!
 //! # Order
@@ -342,6 +343,13 @@ const SPLIT2_BASE: Base = Base {
     properties: LIE_SYMPLECTIC_EXPLICIT,
     summary: "the table before the colon composing split2, the principal-axis splitting",
 };
+const SPLIT_EXACT2_BASE: Base = Base {
+    name: "split-exact2",
+    problem: RIGID_BODY,
+    problems: &[ProblemKind::RigidBody],
+    properties: LIE_SYMPLECTIC_EXPLICIT,
+    summary: "the table before the colon composing split-exact2, potential kicks around the exact free flow",
+};
 const GAUSS2_BASE: Base = Base {
     name: "gauss2",
     problem: "first-order ODE y' = f(t, y)",
@@ -351,7 +359,7 @@ const GAUSS2_BASE: Base = Base {
 };
 
 /// The symmetric order-2 methods that `TABLE:BASE` names compose.
-pub const BASES: [Base; 3] = [LGVI_BASE, SPLIT2_BASE, GAUSS2_BASE];
+pub const BASES: [Base; 4] = [LGVI_BASE, SPLIT2_BASE, SPLIT_EXACT2_BASE, GAUSS2_BASE];
 
 const fn composed_entry(
     name: &'static str,
@@ -625,6 +633,21 @@ pub const METHODS: &[MethodInfo] = &[
         problems: &[ProblemKind::RigidBody],
         summary: "Strang splitting: potential kicks and the exact free-rigid-body flow (Celledoni, Fassò, Säfström & Zanna 2008); exact for V = 0",
     },
+    split_entry(
+        "split-exact4",
+        &composition::MCLACHLAN4,
+        "split-exact2 composed with mclachlan4 (McLachlan 1995, 5 stages)",
+    ),
+    split_entry(
+        "split-exact6",
+        &composition::KAHAN_LI6,
+        "split-exact2 composed with kahan-li6 (Kahan & Li 1997, s9odr6a)",
+    ),
+    split_entry(
+        "split-exact8",
+        &composition::KAHAN_LI8,
+        "split-exact2 composed with kahan-li8 (Kahan & Li 1997, s17odr8a)",
+    ),
     MethodInfo {
         name: "dmv",
         order: Order::Finite(2),
@@ -671,6 +694,46 @@ pub const METHODS: &[MethodInfo] = &[
         "sofroniou-spaletta10:split2",
         &composition::SOFRONIOU_SPALETTA10,
         SPLIT2_BASE,
+    ),
+    composed_entry(
+        "yoshida4:split-exact2",
+        &composition::YOSHIDA4,
+        SPLIT_EXACT2_BASE,
+    ),
+    composed_entry(
+        "yoshida6:split-exact2",
+        &composition::YOSHIDA6,
+        SPLIT_EXACT2_BASE,
+    ),
+    composed_entry(
+        "yoshida8:split-exact2",
+        &composition::YOSHIDA8,
+        SPLIT_EXACT2_BASE,
+    ),
+    composed_entry(
+        "suzuki4:split-exact2",
+        &composition::SUZUKI4,
+        SPLIT_EXACT2_BASE,
+    ),
+    composed_entry(
+        "mclachlan4:split-exact2",
+        &composition::MCLACHLAN4,
+        SPLIT_EXACT2_BASE,
+    ),
+    composed_entry(
+        "kahan-li6:split-exact2",
+        &composition::KAHAN_LI6,
+        SPLIT_EXACT2_BASE,
+    ),
+    composed_entry(
+        "kahan-li8:split-exact2",
+        &composition::KAHAN_LI8,
+        SPLIT_EXACT2_BASE,
+    ),
+    composed_entry(
+        "sofroniou-spaletta10:split-exact2",
+        &composition::SOFRONIOU_SPALETTA10,
+        SPLIT_EXACT2_BASE,
     ),
     composed_entry("yoshida4:gauss2", &composition::YOSHIDA4, GAUSS2_BASE),
     composed_entry("yoshida6:gauss2", &composition::YOSHIDA6, GAUSS2_BASE),

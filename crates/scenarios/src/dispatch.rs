@@ -29,8 +29,8 @@ use tumble_integrators::rigid::{
     CoupledLagrangian, CoupledLgvi, CoupledLieGauss, CoupledState, Dmv, EulerEquations,
     ExactSplitting, ExactStepper, FreeRigidBody, GroupState, Lgvi, PrincipalAxisSplitting,
     RigidBody, RigidBodyState, cg3, coupled_lgvi4, coupled_lgvi6, coupled_lgvi8, coupled_lgvi10,
-    lgvi4, lgvi6, lgvi8, lgvi10, lie_gauss4, lie_gauss6, lie_gauss8, lie_gauss10, rkmk4, split4,
-    split6, split8,
+    lgvi4, lgvi6, lgvi8, lgvi10, lie_gauss4, lie_gauss6, lie_gauss8, lie_gauss10, rkmk4,
+    split_exact4, split_exact6, split_exact8, split4, split6, split8,
 };
 use tumble_integrators::tables::{composition, gauss};
 use tumble_integrators::{
@@ -200,6 +200,9 @@ where
             (ProblemKind::RigidBody, "split2") => {
                 on!(body, Composition::new(table, PrincipalAxisSplitting::new()))
             }
+            (ProblemKind::RigidBody, "split-exact2") => {
+                on!(body, Composition::new(table, ExactSplitting::new()))
+            }
             (kind, _) => return Err(no_stepper(plan, kind.name())),
         }
     } else {
@@ -218,6 +221,9 @@ where
             (ProblemKind::RigidBody, "split6", _) => on!(body, split6()),
             (ProblemKind::RigidBody, "split8", _) => on!(body, split8()),
             (ProblemKind::RigidBody, "split-exact2", _) => on!(body, ExactSplitting::new()),
+            (ProblemKind::RigidBody, "split-exact4", _) => on!(body, split_exact4()),
+            (ProblemKind::RigidBody, "split-exact6", _) => on!(body, split_exact6()),
+            (ProblemKind::RigidBody, "split-exact8", _) => on!(body, split_exact8()),
             (ProblemKind::FreeRigidBody, "dmv", Some(free)) => on!(free, Dmv::new()),
             (ProblemKind::FreeRigidBody, "exact", Some(free)) => on!(free, ExactStepper::new()),
             (ProblemKind::LieVectorField, "rkmk4", _) => {

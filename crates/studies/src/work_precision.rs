@@ -796,6 +796,36 @@ pub fn matching_tolerance(
     Ok((best.0, best.1))
 }
 
+/// The fixed step at which `integrator` costs `target` seconds per simulated second, from a
+/// probe at `h` (cost taken as inversely proportional to the step) corrected by a second probe
+/// at the step found; the step divides `t_end` into whole steps. Returns the step and its cost.
+///
+/// # Errors
+/// A failing probe (a step too long for the method, for one).
+pub fn matching_step(
+    scene: &dyn Scene,
+    params: &Params,
+    integrator: &str,
+    h: f64,
+    target: f64,
+    t_end: f64,
+) -> Result<(f64, f64), SceneError> {
+    let whole = |step: f64| t_end / (t_end / step).round().max(1.0);
+    let probe = |step: f64| {
+        cost_per_second(
+            scene,
+            params,
+            integrator,
+            StepControl::Fixed(step),
+            (2000.0 * step).min(t_end),
+        )
+    };
+    let mut step = whole(h * probe(h)? / target);
+    let cost = probe(step)?;
+    step = whole(step * cost / target);
+    Ok((step, probe(step)?))
+}
+
 /// Runs `runs` (integrator, step or tolerance) over `[0, t_end]` in parallel, each recording
 /// its relative energy error in `bins` logarithmic time bins from `first` on.
 #[must_use]

@@ -13,7 +13,7 @@
 //! | [`coupled`] | bodies coupled to `N` coordinates: [`CoupledLagrangian`], variational [`CoupledLgvi`], [`CoupledVectorField`] | |
 //! | [`lie_gauss`] | variational Lie–Gauss methods: Gauss–Legendre discrete Lagrangian in exponential coordinates, any even order, on rigid and coupled bodies ([`LieGauss`], [`CoupledLieGauss`]) | `lie-gauss4` … `lie-gauss10` |
 //! | [`lie_rk`] | Runge–Kutta–Munthe-Kaas and Crouch–Grossman on `SO(3) × ℝᴺ` | `rkmk4`, `cg3` |
-//! | [`splitting`] | principal-axis rotations + kicks (Strang, composed to 4/6/8), kicks + exact free flow | `split2` … `split8`, `split-exact2` |
+//! | [`splitting`] | principal-axis rotations + kicks (Strang, composed to 4/6/8), kicks + exact free flow (Strang, composed to 4/6/8) | `split2` … `split8`, `split-exact2` … `split-exact8` |
 //! | [`dmv`] | discrete Moser–Veselov | `dmv` |
 //! | [`diagnostics`] | observers: energy, `R m`, `|m|`, `‖RᵀR − 𝟙‖` | |
 //!
@@ -21,7 +21,7 @@
 //!
 //! - A [`RigidBody`] (any `J`, any potential `V(R)`) on [`RigidBodyState`]: [`Lgvi`], [`LieGauss`],
 //!   [`PrincipalAxisSplitting`] and its compositions [`split4`], [`split6`], [`split8`],
-//!   [`ExactSplitting`]; through [`EulerEquations`] on [`GroupState<3>`]: [`rkmk4`], [`cg3`].
+//!   [`ExactSplitting`] and its compositions [`split_exact4`], [`split_exact6`], [`split_exact8`]; through [`EulerEquations`] on [`GroupState<3>`]: [`rkmk4`], [`cg3`].
 //! - The free body ([`FreeRigidBody`]): additionally [`Dmv`] and [`ExactStepper`].
 //! - A body coupled to `N` coordinates: implement [`CoupledLagrangian<N>`] once; then
 //!   [`CoupledLgvi<N>`] and [`CoupledLieGauss`] integrate [`CoupledState<N>`] variationally, and
@@ -77,5 +77,8 @@ pub use lie_gauss::{
 };
 pub use lie_rk::{CROUCH_GROSSMAN3, CrouchGrossman, LieRkTableau, RKMK4, Rkmk, cg3, rkmk4};
 pub use problem::{EulerEquations, HeavyTop, LieVectorField, RigidBody};
-pub use splitting::{ExactSplitting, ExactStepper, PrincipalAxisSplitting, split4, split6, split8};
+pub use splitting::{
+    ExactSplitting, ExactStepper, PrincipalAxisSplitting, split_exact4, split_exact6, split_exact8,
+    split4, split6, split8,
+};
 pub use state::{CoupledState, GroupState, RigidBodyState};

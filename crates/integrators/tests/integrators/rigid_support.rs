@@ -6,10 +6,14 @@ use tumble_integrators::rigid::{
     CoupledLagrangian, CoupledLgvi, CoupledState, CoupledVectorField, Dmv, EulerEquations,
     ExactSplitting, ExactStepper, FreeRigidBody, GroupState, HeavyTop, KineticBlocks, Lgvi,
     PrincipalAxisSplitting, RigidBody, RigidBodyState, Scalar, cg3, lgvi4, lgvi6, lgvi8, lgvi10,
-    lie_gauss4, lie_gauss6, lie_gauss8, lie_gauss10, lie_gauss12, rkmk4, split4, split6, split8,
+    lie_gauss4, lie_gauss6, lie_gauss8, lie_gauss10, lie_gauss12, rkmk4, split_exact4,
+    split_exact6, split_exact8, split4, split6, split8,
 };
+use tumble_integrators::tables::composition::SOFRONIOU_SPALETTA10;
 use tumble_integrators::verification::{OrderFit, OrderStudy};
-use tumble_integrators::{Driver, Error, FnOde, NoObserver, Observer, Stepper, gauss12};
+use tumble_integrators::{
+    Composition, Driver, Error, FnOde, NoObserver, Observer, Stepper, gauss12,
+};
 use tumble_kinematics::so3::{exp, hat};
 
 /// The asymmetric test body: principal moments (1, 2, 3) about axes rotated away from the body
@@ -135,6 +139,17 @@ pub fn solve_body<B: RigidBody>(
         "split6" => run(&mut split6(), problem, s0, t_end, h, obs),
         "split8" => run(&mut split8(), problem, s0, t_end, h, obs),
         "split-exact2" => run(&mut ExactSplitting::new(), problem, s0, t_end, h, obs),
+        "split-exact4" => run(&mut split_exact4(), problem, s0, t_end, h, obs),
+        "split-exact6" => run(&mut split_exact6(), problem, s0, t_end, h, obs),
+        "split-exact8" => run(&mut split_exact8(), problem, s0, t_end, h, obs),
+        "sofroniou-spaletta10:split-exact2" => run(
+            &mut Composition::new(&SOFRONIOU_SPALETTA10, ExactSplitting::new()),
+            problem,
+            s0,
+            t_end,
+            h,
+            obs,
+        ),
         "rkmk4" | "cg3" => {
             let field = EulerEquations(problem);
             let g = GroupState::<3>::from(s0);
