@@ -796,12 +796,15 @@ pub fn matching_tolerance(
     Ok((best.0, best.1))
 }
 
-/// The fixed step at which `integrator` costs `target` seconds per simulated second, from a
-/// probe at `h` (cost taken as inversely proportional to the step) corrected by a second probe
-/// at the step found; the step divides `t_end` into whole steps. Returns the step and its cost.
+/// The fixed step at which `integrator` costs `target` seconds per simulated second: from a
+/// probe at `h`, each next step scales the last one that ran by its cost ratio (cost taken as
+/// inversely proportional to the step), kept below the geometric mean of that step and the
+/// shortest one that failed (a Newton solve that no longer converges, say); at most eight
+/// probes, until the cost is within 10 %. The step divides `t_end` into whole steps. Returns
+/// the step whose cost came closest and that cost.
 ///
 /// # Errors
-/// A failing probe (a step too long for the method, for one).
+/// The probe at `h` failing.
 pub fn matching_step(
     scene: &dyn Scene,
     params: &Params,
@@ -820,10 +823,32 @@ pub fn matching_step(
             (2000.0 * step).min(t_end),
         )
     };
-    let mut step = whole(h * probe(h)? / target);
-    let cost = probe(step)?;
-    step = whole(step * cost / target);
-    Ok((step, probe(step)?))
+    let mut ok = (h, probe(h)?);
+    let mut best = ok;
+    let mut failed = f64::INFINITY;
+    for _ in 0..8 {
+        if (best.1 / target).ln().abs() < 0.1 {
+            break;
+        }
+        let mut step = ok.0 * ok.1 / target;
+        if step > failed {
+            step = (ok.0 * failed).sqrt();
+        }
+        let step = whole(step);
+        if step == ok.0 {
+            break;
+        }
+        match probe(step) {
+            Ok(cost) => {
+                ok = (step, cost);
+                if (cost / target).ln().abs() < (best.1 / target).ln().abs() {
+                    best = ok;
+                }
+            }
+            Err(_) => failed = failed.min(step),
+        }
+    }
+    Ok(best)
 }
 
 /// Runs `runs` (integrator, step or tolerance) over `[0, t_end]` in parallel, each recording
