@@ -58,7 +58,8 @@ pub struct Args {
     /// With `--long`: compare at equal cost from the adaptive side. The adaptive methods named
     /// in `--integrators` (or the scene's adaptive method of highest order) run at this
     /// tolerance, and every fixed-step method at the step whose cost per simulated second
-    /// matches the first of them (probed, then corrected once), over the same horizon.
+    /// matches the first of them (probed, then corrected), over the same horizon; a method
+    /// with no step within 1.5× of that cost is left out, with the reason.
     #[arg(long = "long-tol", value_name = "TOL", requires = "long")]
     pub long_tol: Option<f64>,
     /// Size, font size, resolution and SVG text of the figures.
@@ -498,6 +499,12 @@ fn long(
             let step = work_precision::matching_step(scene, params, &name, h, target, t_end);
             stop_if_interrupted(dir)?;
             match step {
+                Ok((step, cost)) if (cost / target).ln().abs() > 1.5f64.ln() => eprintln!(
+                    "                {name}: left out, no step at that cost (closest that \
+                     ran: dt = {step:.4e} s at {:.2}× the cost; its longer steps failed or \
+                     cost more)",
+                    cost / target
+                ),
                 Ok((step, cost)) => {
                     eprintln!(
                         "                {name} at dt = {step:.4e} s costs {} ({:.2}×)",
