@@ -55,7 +55,13 @@ impl PiController {
         let mut fac = if err <= 0.0 {
             self.fac_max
         } else {
-            self.safety * err.powf(-alpha) * err_prev.powf(self.beta)
+            // x⁰ = 1 for every x: DOP853's and Verner's controllers (β = 0) skip one power.
+            let memory = if self.beta == 0.0 {
+                1.0
+            } else {
+                err_prev.powf(self.beta)
+            };
+            self.safety * err.powf(-alpha) * memory
         };
         fac = fac.clamp(self.fac_min, self.fac_max);
         if after_reject { fac.min(1.0) } else { fac }

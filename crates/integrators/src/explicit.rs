@@ -43,6 +43,8 @@
 //! # References
 //! See [`crate::tables::explicit`] and [`crate::tables::rk_pairs`].
 
+mod kernels;
+
 use crate::control::PiController;
 use crate::error::Error;
 use crate::problem::Ode;
@@ -168,6 +170,7 @@ impl<const S: usize> ExplicitRungeKutta<S> {
     pub fn stepper<Y: VectorState>(&self, y0: &Y) -> ExplicitRkStepper<S, Y> {
         ExplicitRkStepper {
             table: self.table,
+            kernel: kernels::Kernel::of(self.table),
             controller: self.controller,
             k: std::array::from_fn(|_| y0.zeros_like()),
             dk: std::array::from_fn(|_| y0.zeros_like()),
@@ -194,6 +197,8 @@ impl<const S: usize> ExplicitRungeKutta<S> {
 #[derive(Debug, Clone)]
 pub struct ExplicitRkStepper<const S: usize, Y> {
     table: &'static ExplicitTableau<S>,
+    /// The unrolled stage sums for a built-in table ([`kernels`]), else the generic loops.
+    kernel: kernels::Kernel,
     controller: PiController,
     k: [Y; S],
     /// `dk[j] = k[j] − k[0]` for `j ≥ 1`, formed once per stage (module doc: every sum of
@@ -227,37 +232,33 @@ impl<const S: usize, Y: VectorState> ExplicitRkStepper<S, Y> {
     /// `ytmp = base + h Σ_{j<i} a_ij k_j` (`base` = `y0` of the last step when `None`),
     /// evaluated as `base + h (cᵢ k₁ + Σ_{1<j<i} a_ij (k_j − k₁))` (module doc).
     fn stage_argument(&mut self, base: Option<&Y>, i: usize, h: f64) {
+        let n = self.y0.dim();
         let row = &self.table.a[i];
-        copy_into(&mut self.ytmp, base.unwrap_or(&self.y0));
-        let out = self.ytmp.as_mut_slice();
+        let mut ha = [0.0; S];
+        for j in 1..i {
+            ha[j] = h * row[j];
+        }
+        let base = base.unwrap_or(&self.y0).as_slice();
         let k0 = self.k[0].as_slice();
-        let hc = h * self.table.c[i];
-        if hc != 0.0 {
-            for (o, k) in out.iter_mut().zip(k0) {
-                *o += hc * k;
-            }
-        }
-        for (j, &a) in row.iter().enumerate().take(i).skip(1) {
-            if a != 0.0 {
-                let ha = h * a;
-                for (o, d) in out.iter_mut().zip(self.dk[j].as_slice()) {
-                    *o += ha * d;
-                }
-            }
-        }
+        combine(
+            &mut self.ytmp.as_mut_slice()[..n],
+            Some(base),
+            h * self.table.c[i],
+            k0,
+            &self.dk[1..i],
+            &ha[1..i],
+        );
     }
 
     /// `dk[i] = k[i] − k[0]`.
     fn difference(&mut self, i: usize) {
+        let n = self.y0.dim();
         let (first, rest) = self.k.split_at(1);
-        let k0 = first[0].as_slice();
-        for ((d, ki), k) in self.dk[i]
-            .as_mut_slice()
-            .iter_mut()
-            .zip(rest[i - 1].as_slice())
-            .zip(k0)
-        {
-            *d = ki - k;
+        let k0 = &first[0].as_slice()[..n];
+        let ki = &rest[i - 1].as_slice()[..n];
+        let d = &mut self.dk[i].as_mut_slice()[..n];
+        for m in 0..n {
+            d[m] = ki[m] - k0[m];
         }
     }
 
@@ -284,76 +285,95 @@ impl<const S: usize, Y: VectorState> ExplicitRkStepper<S, Y> {
         }
         self.committed = false;
         self.dense_ready = false;
+        let unrolled = kernels::stages(
+            self.kernel,
+            problem,
+            t,
+            y,
+            h,
+            kernels::Work {
+                k: &mut self.k,
+                dk: &mut self.dk,
+                ytmp: &mut self.ytmp,
+                delta: &mut self.delta,
+            },
+        );
+        if unrolled {
+            return;
+        }
         for i in 1..tab.stages {
             self.stage_argument(Some(y), i, h);
             problem.rhs(t + tab.c[i] * h, &self.ytmp, &mut self.k[i]);
             self.difference(i);
         }
         // delta = h Σ bᵢ kᵢ = h (k₁ + Σ_{i>1} bᵢ (kᵢ − k₁)) since Σ bᵢ = 1 (module doc).
-        let d = self.delta.as_mut_slice();
-        let k0 = self.k[0].as_slice();
-        for (o, k) in d.iter_mut().zip(k0) {
-            *o = h * k;
+        let n = y.dim();
+        let mut hb = [0.0; S];
+        for j in 1..tab.stages {
+            hb[j] = h * tab.b[j];
         }
-        for (j, &b) in tab.b.iter().enumerate().take(tab.stages).skip(1) {
-            if b != 0.0 {
-                let hb = h * b;
-                for (o, dj) in d.iter_mut().zip(self.dk[j].as_slice()) {
-                    *o += hb * dj;
-                }
-            }
-        }
+        combine(
+            &mut self.delta.as_mut_slice()[..n],
+            None,
+            h,
+            self.k[0].as_slice(),
+            &self.dk[1..tab.stages],
+            &hb[1..tab.stages],
+        );
     }
 
-    /// The scaled error of the last attempt. The weighted stage sums are accumulated stage by
-    /// stage into the `ytmp` and `scratch` workspaces (contiguous, vectorisable loops; per
-    /// component the same sum in the same order as component by component).
+    /// The scaled error of the last attempt. The weighted stage sums go into the `ytmp` and
+    /// `scratch` workspaces (unrolled for a built-in table, else accumulated stage by stage:
+    /// per component the same sum in the same order either way), then their weighted norm.
     fn error_norm(&mut self, y: &Y, h: f64, tol: &Tolerances) -> f64 {
-        let n = y.dim().max(1) as f64;
-        let ys = y.as_slice();
-        let ds = self.delta.as_slice();
-        let weight = |i: usize| tol.atol + tol.rtol * ys[i].abs().max((ys[i] + ds[i]).abs());
-        let accumulate = |out: &mut [f64], weights: &[f64; S], k: &[Y; S], skip_zeros: bool| {
-            out.fill(0.0);
-            for (w, kj) in weights.iter().zip(k) {
-                if skip_zeros && *w == 0.0 {
-                    continue;
-                }
-                for (o, x) in out.iter_mut().zip(kj.as_slice()) {
-                    *o += w * x;
-                }
-            }
+        let (e5w, e3w) = match &self.table.error {
+            ErrorEstimator::None => return 0.0,
+            ErrorEstimator::Embedded { weights, .. } => (weights, None),
+            ErrorEstimator::Dop853 { e5, e3, .. } => (e5, Some(e3)),
         };
-        match &self.table.error {
-            ErrorEstimator::None => 0.0,
-            ErrorEstimator::Embedded { weights, .. } => {
-                let e = self.ytmp.as_mut_slice();
-                accumulate(e, weights, &self.k, true);
-                let mut sum = 0.0;
-                for (i, &ei) in e.iter().enumerate() {
-                    let r = h * ei / weight(i);
-                    sum += r * r;
+        if !kernels::error_sums(self.kernel, &self.k, &mut self.ytmp, &mut self.scratch) {
+            let accumulate = |out: &mut Y, weights: &[f64; S], k: &[Y; S]| {
+                let out = out.as_mut_slice();
+                out.fill(0.0);
+                for (&w, kj) in weights.iter().zip(k) {
+                    if w != 0.0 {
+                        for (o, x) in out.iter_mut().zip(kj.as_slice()) {
+                            *o += w * x;
+                        }
+                    }
                 }
-                (sum / n).sqrt()
-            }
-            ErrorEstimator::Dop853 { e5, e3, .. } => {
-                let a5 = self.ytmp.as_mut_slice();
-                accumulate(a5, e5, &self.k, false);
-                let a3 = self.scratch.as_mut_slice();
-                accumulate(a3, e3, &self.k, false);
-                let (mut s5, mut s3) = (0.0, 0.0);
-                for (i, (&x5, &x3)) in a5.iter().zip(a3.iter()).enumerate() {
-                    let sk = weight(i);
-                    s5 += (x5 / sk) * (x5 / sk);
-                    s3 += (x3 / sk) * (x3 / sk);
-                }
-                let mut deno = s5 + 0.01 * s3;
-                if deno <= 0.0 {
-                    deno = 1.0;
-                }
-                h.abs() * s5 / (n * deno).sqrt()
+            };
+            accumulate(&mut self.ytmp, e5w, &self.k);
+            if let Some(e3w) = e3w {
+                accumulate(&mut self.scratch, e3w, &self.k);
             }
         }
+        let n = y.dim();
+        let ys = &y.as_slice()[..n];
+        let ds = &self.delta.as_slice()[..n];
+        let e5 = &self.ytmp.as_slice()[..n];
+        let dim = n.max(1) as f64;
+        let weight = |i: usize| tol.atol + tol.rtol * ys[i].abs().max((ys[i] + ds[i]).abs());
+        if e3w.is_none() {
+            let mut sum = 0.0;
+            for (i, &ei) in e5.iter().enumerate() {
+                let r = h * ei / weight(i);
+                sum += r * r;
+            }
+            return (sum / dim).sqrt();
+        }
+        let e3 = &self.scratch.as_slice()[..n];
+        let (mut s5, mut s3) = (0.0, 0.0);
+        for (i, (&x5, &x3)) in e5.iter().zip(e3).enumerate() {
+            let sk = weight(i);
+            s5 += (x5 / sk) * (x5 / sk);
+            s3 += (x3 / sk) * (x3 / sk);
+        }
+        let mut deno = s5 + 0.01 * s3;
+        if deno <= 0.0 {
+            deno = 1.0;
+        }
+        h.abs() * s5 / (dim * deno).sqrt()
     }
 
     fn commit<P: Ode<Y>>(&mut self, problem: &P, t: f64, y: &mut Y, h: f64) {
@@ -566,5 +586,59 @@ impl<const S: usize, Y: VectorState, P: Ode<Y>> DenseOutput<P> for ExplicitRkSte
 
     fn dense_order(&self) -> u32 {
         self.table.dense_order
+    }
+}
+
+/// Width of the register blocks of [`combine`].
+const LANES: usize = 4;
+
+/// `out = base + (w₀ x₀ + Σ_j w_j x_j)` componentwise, terms with `w_j = 0` left out (`base`
+/// zero when `None`). The sum is taken block by block over [`LANES`] components, each block
+/// accumulated in registers over all terms and stored once: no component is written and read
+/// back within a call, and per component the terms are added in the same order.
+#[inline(always)]
+fn combine<Y: VectorState>(
+    out: &mut [f64],
+    base: Option<&[f64]>,
+    w0: f64,
+    x0: &[f64],
+    xs: &[Y],
+    ws: &[f64],
+) {
+    let n = out.len();
+    let x0 = &x0[..n];
+    let block = |out: &mut [f64], start: usize| {
+        let width = out.len();
+        let mut acc = [0.0; LANES];
+        for l in 0..width {
+            acc[l] = w0 * x0[start + l];
+        }
+        for (x, &w) in xs.iter().zip(ws) {
+            if w != 0.0 {
+                let x = &x.as_slice()[start..start + width];
+                for l in 0..width {
+                    acc[l] += w * x[l];
+                }
+            }
+        }
+        match base {
+            Some(b) => {
+                let b = &b[start..start + width];
+                for l in 0..width {
+                    out[l] = b[l] + acc[l];
+                }
+            }
+            None => out.copy_from_slice(&acc[..width]),
+        }
+    };
+    let mut chunks = out.chunks_exact_mut(LANES);
+    let mut start = 0;
+    for c in &mut chunks {
+        block(c, start);
+        start += LANES;
+    }
+    let rest = chunks.into_remainder();
+    if !rest.is_empty() {
+        block(rest, start);
     }
 }

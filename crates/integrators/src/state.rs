@@ -63,14 +63,21 @@ impl<const N: usize> State for SVector<f64, N> {
 }
 
 impl<const N: usize> VectorState for SVector<f64, N> {
+    #[inline]
     fn as_slice(&self) -> &[f64] {
         nalgebra::Matrix::as_slice(self)
     }
+    #[inline]
     fn as_mut_slice(&mut self) -> &mut [f64] {
         nalgebra::Matrix::as_mut_slice(self)
     }
     fn zeros_like(&self) -> Self {
         Self::zeros()
+    }
+    /// `N`, a constant: loops over `0..dim()` compile to fixed-length code.
+    #[inline]
+    fn dim(&self) -> usize {
+        N
     }
 }
 
@@ -112,14 +119,20 @@ impl<const N: usize> State for [f64; N] {
 }
 
 impl<const N: usize> VectorState for [f64; N] {
+    #[inline]
     fn as_slice(&self) -> &[f64] {
         self
     }
+    #[inline]
     fn as_mut_slice(&mut self) -> &mut [f64] {
         self
     }
     fn zeros_like(&self) -> Self {
         [0.0; N]
+    }
+    #[inline]
+    fn dim(&self) -> usize {
+        N
     }
 }
 

@@ -72,6 +72,8 @@ pub struct FreeRigidBody {
     moments: Vector3<f64>,
     /// Principal axes as the columns of a right-handed rotation `Q` (body frame): `J = Q diag Qᵀ`.
     axes: Rotation3<f64>,
+    /// `Q` is exactly the identity (the body frame is principal, moments ascending along x, y, z).
+    principal: bool,
 }
 
 /// Which closed form a flow uses. (The general variant is larger than the others; flows are
@@ -179,7 +181,12 @@ impl FreeRigidBody {
         } else {
             Rotation3::from_matrix(&q)
         };
-        Ok(FreeRigidBody { moments, axes })
+        let principal = *axes.matrix() == Matrix3::identity();
+        Ok(FreeRigidBody {
+            moments,
+            axes,
+            principal,
+        })
     }
 
     /// From principal moments (any order) along the body axes x, y, z.
@@ -231,7 +238,12 @@ impl FreeRigidBody {
 
     /// Body angular velocity `ω = J⁻¹ m`.
     #[must_use]
+    #[inline]
     pub fn omega(&self, m: &Vector3<f64>) -> Vector3<f64> {
+        if self.principal {
+            // Q = 1: the products with Q below change no bit of a finite m.
+            return m.component_div(&self.moments);
+        }
         let q = self.axes.matrix();
         q * (q.transpose() * m).component_div(&self.moments)
     }

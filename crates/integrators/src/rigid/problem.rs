@@ -65,30 +65,38 @@ pub trait RigidBody {
 }
 
 impl RigidBody for FreeRigidBody {
+    #[inline]
     fn body(&self) -> &FreeRigidBody {
         self
     }
+    #[inline]
     fn potential(&self, _rotation: &Matrix3<f64>) -> f64 {
         0.0
     }
+    #[inline]
     fn torque(&self, _rotation: &Matrix3<f64>) -> Vector3<f64> {
         Vector3::zeros()
     }
+    #[inline]
     fn is_torque_free(&self) -> bool {
         true
     }
 }
 
 impl<B: RigidBody + ?Sized> RigidBody for &B {
+    #[inline]
     fn body(&self) -> &FreeRigidBody {
         (**self).body()
     }
+    #[inline]
     fn potential(&self, rotation: &Matrix3<f64>) -> f64 {
         (**self).potential(rotation)
     }
+    #[inline]
     fn torque(&self, rotation: &Matrix3<f64>) -> Vector3<f64> {
         (**self).torque(rotation)
     }
+    #[inline]
     fn is_torque_free(&self) -> bool {
         (**self).is_torque_free()
     }
@@ -210,6 +218,7 @@ impl<const N: usize, F: LieVectorField<N> + ?Sized> LieVectorField<N> for &F {
 pub struct EulerEquations<B>(pub B);
 
 impl<B: RigidBody> LieVectorField<3> for EulerEquations<B> {
+    #[inline]
     fn eval(
         &self,
         _t: f64,

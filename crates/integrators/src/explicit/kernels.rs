@@ -1,0 +1,362 @@
+//! Stage sums with the coefficients of the built-in tables as compile-time constants.
+//!
+//! The generic stepper reads its table at run time: every stage sum loads its coefficients,
+//! tests them for zero and loops over a run-time number of terms. For the built-in tables the
+//! same sums are written out here term by term (`seq!` unrolls the stage and term indices), so
+//! the coefficients are constants, zero terms vanish at compile time and each stage argument
+//! is one pass over the components with its terms in registers.
+//!
+//! Every sum is the one the generic path takes, with the same terms in the same order
+//! (`acc = w₀ x₀ + Σ_j w_j x_j`, zero weights left out, then `base + acc`), so both paths give
+//! identical results bit for bit (tested in [`super`]).
+
+use seq_macro::seq;
+
+use super::ExplicitRungeKutta;
+use crate::problem::Ode;
+use crate::state::VectorState;
+use crate::tables::explicit::{DOP853, DP5, RK4};
+use crate::tables::rk_pairs::{TSIT5, VERN6, VERN7, VERN8, VERN9};
+use crate::tables::{ErrorEstimator, ExplicitTableau};
+
+/// Which stage sums a stepper uses: the generic loops, or one of the unrolled kernels.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum Kernel {
+    Generic,
+    Rk4,
+    Dp5,
+    Tsit5,
+    Dop853,
+    Vern6,
+    Vern7,
+    Vern8,
+    Vern9,
+}
+
+impl Kernel {
+    /// The unrolled kernel whose table equals `table` exactly, else [`Kernel::Generic`].
+    pub(super) fn of<const S: usize>(table: &ExplicitTableau<S>) -> Self {
+        fn is<const A: usize, const B: usize>(
+            x: &ExplicitTableau<A>,
+            y: &ExplicitTableau<B>,
+        ) -> bool {
+            if A != B {
+                return false;
+            }
+            if std::ptr::eq(x.a.as_ptr().cast::<f64>(), y.a.as_ptr().cast::<f64>()) {
+                return true;
+            }
+            x.name == y.name
+                && x.order == y.order
+                && x.stages == y.stages
+                && x.fsal == y.fsal
+                && x.c[..] == y.c[..]
+                && x.b[..] == y.b[..]
+                && x.a.iter().zip(&y.a).all(|(p, q)| p[..] == q[..])
+                && match (&x.error, &y.error) {
+                    (ErrorEstimator::None, ErrorEstimator::None) => true,
+                    (
+                        ErrorEstimator::Embedded { weights: w, .. },
+                        ErrorEstimator::Embedded { weights: v, .. },
+                    ) => w[..] == v[..],
+                    (
+                        ErrorEstimator::Dop853 { e5: a5, e3: a3, .. },
+                        ErrorEstimator::Dop853 { e5: b5, e3: b3, .. },
+                    ) => a5[..] == b5[..] && a3[..] == b3[..],
+                    _ => false,
+                }
+        }
+        // The constructors' tables first: the same reference, so the pointer test settles it.
+        if is(table, ExplicitRungeKutta::rk4().table) {
+            Self::Rk4
+        } else if is(table, ExplicitRungeKutta::dp5().table) {
+            Self::Dp5
+        } else if is(table, ExplicitRungeKutta::tsit5().table) {
+            Self::Tsit5
+        } else if is(table, ExplicitRungeKutta::dop853().table) {
+            Self::Dop853
+        } else if is(table, ExplicitRungeKutta::vern6().table) {
+            Self::Vern6
+        } else if is(table, ExplicitRungeKutta::vern7().table) {
+            Self::Vern7
+        } else if is(table, ExplicitRungeKutta::vern8().table) {
+            Self::Vern8
+        } else if is(table, ExplicitRungeKutta::vern9().table) {
+            Self::Vern9
+        } else {
+            Self::Generic
+        }
+    }
+}
+
+/// The workspace a kernel writes: stages `k`, differences `dk[j] = k[j] − k[0]`, the stage
+/// argument `ytmp`, the increment `delta` and the error sums `e5`, `e3`.
+pub(super) struct Work<'a, Y> {
+    pub k: &'a mut [Y],
+    pub dk: &'a mut [Y],
+    pub ytmp: &'a mut Y,
+    pub delta: &'a mut Y,
+}
+
+/// Weights of the embedded estimate (or DOP853's fifth-order difference); zeros without one.
+const fn first_error_weights<const S: usize>(t: &ExplicitTableau<S>) -> [f64; S] {
+    match t.error {
+        ErrorEstimator::None => [0.0; S],
+        ErrorEstimator::Embedded { weights, .. } => weights,
+        ErrorEstimator::Dop853 { e5, .. } => e5,
+    }
+}
+
+/// DOP853's third-order difference weights; zeros for other estimators.
+const fn second_error_weights<const S: usize>(t: &ExplicitTableau<S>) -> [f64; S] {
+    match t.error {
+        ErrorEstimator::Dop853 { e3, .. } => e3,
+        _ => [0.0; S],
+    }
+}
+
+macro_rules! kernel {
+    ($stages_fn:ident, $error_fn:ident, $tab:path, $s:tt, $stages:tt) => {
+        /// Stages `1 … stages − 1` (stage 0 in `k[0]`) and `delta = h Σ bᵢ kᵢ`; `false`
+        /// (nothing done) when the workspace is not shaped for this table.
+        pub(super) fn $stages_fn<Y: VectorState, P: Ode<Y> + ?Sized>(
+            problem: &P,
+            t: f64,
+            y: &Y,
+            h: f64,
+            w: Work<'_, Y>,
+        ) -> bool {
+            const T: ExplicitTableau<$s> = $tab;
+            let Ok(k) = <&mut [Y; $s]>::try_from(w.k) else {
+                return false;
+            };
+            let Ok(dk) = <&mut [Y; $s]>::try_from(w.dk) else {
+                return false;
+            };
+            let n = y.dim();
+            let ys = &y.as_slice()[..n];
+            seq!(I in 1..$stages {
+                {
+                    let k0 = &k[0].as_slice()[..n];
+                    let out = &mut w.ytmp.as_mut_slice()[..n];
+                    for m in 0..n {
+                        #[allow(unused_mut)]
+                        let mut acc = (h * T.c[I]) * k0[m];
+                        seq!(J in 1..I {
+                            if T.a[I][J] != 0.0 {
+                                acc += (h * T.a[I][J]) * dk[J].as_slice()[m];
+                            }
+                        });
+                        out[m] = ys[m] + acc;
+                    }
+                }
+                problem.rhs(t + T.c[I] * h, w.ytmp, &mut k[I]);
+                {
+                    let (k0, ki) = (k[0].as_slice(), k[I].as_slice());
+                    let d = &mut dk[I].as_mut_slice()[..n];
+                    for m in 0..n {
+                        d[m] = ki[m] - k0[m];
+                    }
+                }
+            });
+            let k0 = &k[0].as_slice()[..n];
+            let out = &mut w.delta.as_mut_slice()[..n];
+            for m in 0..n {
+                let mut acc = h * k0[m];
+                seq!(J in 1..$stages {
+                    if T.b[J] != 0.0 {
+                        acc += (h * T.b[J]) * dk[J].as_slice()[m];
+                    }
+                });
+                out[m] = acc;
+            }
+            true
+        }
+
+        /// The error estimator's stage sums `Σ eᵢ kᵢ` into `e5` (and DOP853's `Σ e3ᵢ kᵢ`
+        /// into `e3`); `false` when the workspace is not shaped for this table.
+        pub(super) fn $error_fn<Y: VectorState>(k: &[Y], e5: &mut Y, e3: &mut Y) -> bool {
+            const T: ExplicitTableau<$s> = $tab;
+            const W5: [f64; $s] = first_error_weights(&T);
+            const W3: [f64; $s] = second_error_weights(&T);
+            let Ok(k) = <&[Y; $s]>::try_from(k) else {
+                return false;
+            };
+            let n = e5.dim();
+            let o5 = &mut e5.as_mut_slice()[..n];
+            let o3 = &mut e3.as_mut_slice()[..n];
+            for m in 0..n {
+                let (mut a5, mut a3) = (0.0_f64, 0.0_f64);
+                seq!(J in 0..$s {
+                    if W5[J] != 0.0 {
+                        a5 += W5[J] * k[J].as_slice()[m];
+                    }
+                    if W3[J] != 0.0 {
+                        a3 += W3[J] * k[J].as_slice()[m];
+                    }
+                });
+                o5[m] = a5;
+                o3[m] = a3;
+            }
+            true
+        }
+    };
+}
+
+kernel!(rk4_stages, rk4_error, RK4, 5, 4);
+kernel!(dp5_stages, dp5_error, DP5, 7, 7);
+kernel!(tsit5_stages, tsit5_error, TSIT5, 7, 7);
+kernel!(dop853_stages, dop853_error, DOP853, 16, 12);
+kernel!(vern6_stages, vern6_error, VERN6, 12, 9);
+kernel!(vern7_stages, vern7_error, VERN7, 16, 10);
+kernel!(vern8_stages, vern8_error, VERN8, 21, 13);
+kernel!(vern9_stages, vern9_error, VERN9, 26, 16);
+
+/// Runs the unrolled stages of `kernel`; `false` for [`Kernel::Generic`] or a workspace not
+/// shaped for it (the caller then takes the generic path).
+#[inline]
+pub(super) fn stages<Y: VectorState, P: Ode<Y> + ?Sized>(
+    kernel: Kernel,
+    problem: &P,
+    t: f64,
+    y: &Y,
+    h: f64,
+    w: Work<'_, Y>,
+) -> bool {
+    match kernel {
+        Kernel::Generic => false,
+        Kernel::Rk4 => rk4_stages(problem, t, y, h, w),
+        Kernel::Dp5 => dp5_stages(problem, t, y, h, w),
+        Kernel::Tsit5 => tsit5_stages(problem, t, y, h, w),
+        Kernel::Dop853 => dop853_stages(problem, t, y, h, w),
+        Kernel::Vern6 => vern6_stages(problem, t, y, h, w),
+        Kernel::Vern7 => vern7_stages(problem, t, y, h, w),
+        Kernel::Vern8 => vern8_stages(problem, t, y, h, w),
+        Kernel::Vern9 => vern9_stages(problem, t, y, h, w),
+    }
+}
+
+/// The error sums of `kernel` (see the `*_error` functions); `false` as for [`stages`].
+#[inline]
+pub(super) fn error_sums<Y: VectorState>(kernel: Kernel, k: &[Y], e5: &mut Y, e3: &mut Y) -> bool {
+    match kernel {
+        Kernel::Generic => false,
+        Kernel::Rk4 => rk4_error(k, e5, e3),
+        Kernel::Dp5 => dp5_error(k, e5, e3),
+        Kernel::Tsit5 => tsit5_error(k, e5, e3),
+        Kernel::Dop853 => dop853_error(k, e5, e3),
+        Kernel::Vern6 => vern6_error(k, e5, e3),
+        Kernel::Vern7 => vern7_error(k, e5, e3),
+        Kernel::Vern8 => vern8_error(k, e5, e3),
+        Kernel::Vern9 => vern9_error(k, e5, e3),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use nalgebra::{DVector, SVector};
+
+    use super::Kernel;
+    use crate::explicit::ExplicitRungeKutta;
+    use crate::stepper::{AdaptiveStepper, DenseOutput, Stepper, Tolerances};
+    use crate::{Driver, NoObserver, Ode, VectorState};
+
+    /// Lotka–Volterra and Hairer's forced rigid body side by side (dimension 5, so the
+    /// blocks of the generic path have a remainder).
+    struct Mixed;
+
+    impl<Y: VectorState> Ode<Y> for Mixed {
+        fn rhs(&self, t: f64, y: &Y, dy: &mut Y) {
+            let (y, dy) = (y.as_slice(), dy.as_mut_slice());
+            dy[0] = y[0] * (1.0 - y[1]);
+            dy[1] = y[1] * (y[0] - 1.0);
+            dy[2] = (-2.0 + 0.5 / 0.75) * y[3] * y[4];
+            dy[3] = (1.25 - 0.5 / 0.75) * y[2] * y[4];
+            dy[4] = -0.5 * y[2] * y[3] + 0.25 * (3.0 * t).sin();
+        }
+    }
+
+    /// Runs `method` adaptively to `t = 20` with the unrolled kernel and with the generic
+    /// loops forced, then interpolates in the last step: every number must agree bit for bit.
+    fn same_bits<const S: usize, Y: VectorState + PartialEq + std::fmt::Debug>(
+        method: ExplicitRungeKutta<S>,
+        y0: &Y,
+        expect: Kernel,
+    ) {
+        let tol = Tolerances::new(1e-9, 1e-9).expect("tolerances");
+        let run = |generic: bool| {
+            let mut y = y0.clone();
+            let mut st = method.stepper(&y);
+            assert_eq!(st.kernel, expect, "{}", method.table.name);
+            if generic {
+                st.kernel = Kernel::Generic;
+            }
+            let report = Driver::new(0.0, 20.0)
+                .expect("driver")
+                .run_adaptive(&mut st, &Mixed, &mut y, &tol, &mut [], &mut NoObserver)
+                .expect("run");
+            // a fixed step and an attempt after the run exercise both entry points again
+            let mut z = y.clone();
+            st.step(&Mixed, 20.0, &mut z, 0.3).expect("step");
+            let err = st.attempt(&Mixed, 20.3, &z, 0.2, &tol).expect("attempt");
+            st.accept(&Mixed, 20.3, &mut z, 0.2);
+            let mut mid = y.clone();
+            st.interpolate(&Mixed, 20.37, &mut mid);
+            (y, report.steps, report.rejected, z, err.to_bits(), mid)
+        };
+        let (fast, generic) = (run(false), run(true));
+        assert!(fast.1 > 20, "{}: only {} steps", method.table.name, fast.1);
+        assert_eq!(fast, generic, "{}", method.table.name);
+    }
+
+    #[test]
+    fn unrolled_kernels_give_the_generic_stage_sums_bit_for_bit() {
+        let y = SVector::<f64, 5>::from([1.2, 0.8, 1.0, 0.1, 0.9]);
+        let d = DVector::from_column_slice(y.as_slice());
+        macro_rules! both {
+            ($m:expr, $k:expr) => {
+                same_bits($m, &y, $k);
+                same_bits($m, &d, $k);
+            };
+        }
+        both!(ExplicitRungeKutta::dp5(), Kernel::Dp5);
+        both!(ExplicitRungeKutta::tsit5(), Kernel::Tsit5);
+        both!(ExplicitRungeKutta::dop853(), Kernel::Dop853);
+        both!(ExplicitRungeKutta::vern6(), Kernel::Vern6);
+        both!(ExplicitRungeKutta::vern7(), Kernel::Vern7);
+        both!(ExplicitRungeKutta::vern8(), Kernel::Vern8);
+        both!(ExplicitRungeKutta::vern9(), Kernel::Vern9);
+    }
+
+    #[test]
+    fn rk4_kernel_gives_the_generic_fixed_steps_bit_for_bit() {
+        let y0 = SVector::<f64, 5>::from([1.2, 0.8, 1.0, 0.1, 0.9]);
+        let run = |generic: bool| {
+            let mut y = y0;
+            let mut st = ExplicitRungeKutta::rk4().stepper(&y);
+            assert_eq!(st.kernel, Kernel::Rk4);
+            if generic {
+                st.kernel = Kernel::Generic;
+            }
+            for i in 0..400 {
+                st.step(&Mixed, 0.05 * f64::from(i), &mut y, 0.05)
+                    .expect("step");
+            }
+            y
+        };
+        assert_eq!(run(false), run(true));
+    }
+
+    #[test]
+    fn a_table_that_differs_from_a_built_in_one_takes_the_generic_path() {
+        let mut table = crate::tables::rk_pairs::VERN8;
+        table.a[5][2] = f64::from_bits(table.a[5][2].to_bits() + 1);
+        let leaked: &'static _ = Box::leak(Box::new(table));
+        let method = ExplicitRungeKutta {
+            table: leaked,
+            controller: ExplicitRungeKutta::vern8().controller,
+        };
+        let st = method.stepper(&SVector::<f64, 5>::zeros());
+        assert_eq!(st.kernel, Kernel::Generic);
+    }
+}
