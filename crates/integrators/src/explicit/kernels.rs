@@ -10,6 +10,8 @@
 //! (`acc = w₀ x₀ + Σ_j w_j x_j`, zero weights left out, then `base + acc`), so both paths give
 //! identical results bit for bit (tested in [`super`]).
 
+use std::cell::RefCell;
+
 use seq_macro::seq;
 
 use super::ExplicitRungeKutta;
@@ -33,9 +35,36 @@ pub(super) enum Kernel {
     Vern9,
 }
 
+thread_local! {
+    /// Kernels already chosen on this thread, by the address of their table.
+    static CHOSEN: RefCell<Vec<(usize, Kernel)>> = const { RefCell::new(Vec::new()) };
+}
+
+/// Addresses [`CHOSEN`] remembers per thread (a program with more tables compares the rest).
+const REMEMBERED: usize = 64;
+
 impl Kernel {
     /// The unrolled kernel whose table equals `table` exactly, else [`Kernel::Generic`].
-    pub(super) fn of<const S: usize>(table: &ExplicitTableau<S>) -> Self {
+    ///
+    /// A `&'static` table never changes and its memory is never reused, so the choice is
+    /// remembered by address: comparing a table with the built-in ones takes longer than a
+    /// short run of a cheap problem.
+    pub(super) fn of<const S: usize>(table: &'static ExplicitTableau<S>) -> Self {
+        let address = std::ptr::from_ref(table) as usize;
+        let known = CHOSEN.with_borrow(|c| c.iter().find(|e| e.0 == address).map(|e| e.1));
+        if let Some(kernel) = known {
+            return kernel;
+        }
+        let kernel = Self::by_comparison(table);
+        CHOSEN.with_borrow_mut(|c| {
+            if c.len() < REMEMBERED {
+                c.push((address, kernel));
+            }
+        });
+        kernel
+    }
+
+    fn by_comparison<const S: usize>(table: &ExplicitTableau<S>) -> Self {
         fn is<const A: usize, const B: usize>(
             x: &ExplicitTableau<A>,
             y: &ExplicitTableau<B>,
@@ -115,6 +144,77 @@ const fn second_error_weights<const S: usize>(t: &ExplicitTableau<S>) -> [f64; S
     }
 }
 
+/// Components `m … m + W − 1` of stage `I`'s argument,
+/// `out = ys + ((h c_I) k₀ + Σ_{J<I} (h a_IJ) dk_J)`, accumulated in a `[f64; W]` (which the
+/// compiler keeps in vector registers).
+macro_rules! stage_block {
+    ($t:ident, $w:tt, $i:tt, $m:ident, $h:ident, $k0:ident, $dk:ident, $ys:ident, $out:ident) => {{
+        let mut acc = [0.0_f64; $w];
+        for l in 0..$w {
+            acc[l] = ($h * $t.c[$i]) * $k0[$m + l];
+        }
+        seq!(J in 1..$i {
+            if $t.a[$i][J] != 0.0 {
+                let c = $h * $t.a[$i][J];
+                let x = &$dk[J].as_slice()[$m..$m + $w];
+                for l in 0..$w {
+                    acc[l] += c * x[l];
+                }
+            }
+        });
+        for l in 0..$w {
+            $out[$m + l] = $ys[$m + l] + acc[l];
+        }
+    }};
+}
+
+/// Components `m … m + W − 1` of `delta = h k₀ + Σ_J (h b_J) dk_J`.
+macro_rules! delta_block {
+    ($t:ident, $w:tt, $stages:tt, $m:ident, $h:ident, $k0:ident, $dk:ident, $out:ident) => {{
+        let mut acc = [0.0_f64; $w];
+        for l in 0..$w {
+            acc[l] = $h * $k0[$m + l];
+        }
+        seq!(J in 1..$stages {
+            if $t.b[J] != 0.0 {
+                let c = $h * $t.b[J];
+                let x = &$dk[J].as_slice()[$m..$m + $w];
+                for l in 0..$w {
+                    acc[l] += c * x[l];
+                }
+            }
+        });
+        $out[$m..$m + $w].copy_from_slice(&acc);
+    }};
+}
+
+/// Components `m … m + W − 1` of the error sums `Σ_J W5_J k_J` and `Σ_J W3_J k_J`.
+macro_rules! error_block {
+    ($w5:ident, $w3:ident, $w:tt, $s:tt, $m:ident, $k:ident, $o5:ident, $o3:ident) => {{
+        let mut a5 = [0.0_f64; $w];
+        let mut a3 = [0.0_f64; $w];
+        seq!(J in 0..$s {
+            if $w5[J] != 0.0 {
+                let x = &$k[J].as_slice()[$m..$m + $w];
+                for l in 0..$w {
+                    a5[l] += $w5[J] * x[l];
+                }
+            }
+            if $w3[J] != 0.0 {
+                let x = &$k[J].as_slice()[$m..$m + $w];
+                for l in 0..$w {
+                    a3[l] += $w3[J] * x[l];
+                }
+            }
+        });
+        $o5[$m..$m + $w].copy_from_slice(&a5);
+        $o3[$m..$m + $w].copy_from_slice(&a3);
+    }};
+}
+
+/// Width of the blocks the kernels sum in (the rest of the components one at a time).
+const LANES: usize = 4;
+
 macro_rules! kernel {
     ($stages_fn:ident, $error_fn:ident, $tab:path, $s:tt, $stages:tt) => {
         /// Stages `1 … stages − 1` (stage 0 in `k[0]`) and `delta = h Σ bᵢ kᵢ`; `false`
@@ -139,20 +239,19 @@ macro_rules! kernel {
                 {
                     let k0 = &k[0].as_slice()[..n];
                     let out = &mut w.ytmp.as_mut_slice()[..n];
-                    for m in 0..n {
-                        #[allow(unused_mut)]
-                        let mut acc = (h * T.c[I]) * k0[m];
-                        seq!(J in 1..I {
-                            if T.a[I][J] != 0.0 {
-                                acc += (h * T.a[I][J]) * dk[J].as_slice()[m];
-                            }
-                        });
-                        out[m] = ys[m] + acc;
+                    let mut m = 0;
+                    while m + LANES <= n {
+                        stage_block!(T, 4, I, m, h, k0, dk, ys, out);
+                        m += LANES;
+                    }
+                    while m < n {
+                        stage_block!(T, 1, I, m, h, k0, dk, ys, out);
+                        m += 1;
                     }
                 }
                 problem.rhs(t + T.c[I] * h, w.ytmp, &mut k[I]);
                 {
-                    let (k0, ki) = (k[0].as_slice(), k[I].as_slice());
+                    let (k0, ki) = (&k[0].as_slice()[..n], &k[I].as_slice()[..n]);
                     let d = &mut dk[I].as_mut_slice()[..n];
                     for m in 0..n {
                         d[m] = ki[m] - k0[m];
@@ -161,14 +260,14 @@ macro_rules! kernel {
             });
             let k0 = &k[0].as_slice()[..n];
             let out = &mut w.delta.as_mut_slice()[..n];
-            for m in 0..n {
-                let mut acc = h * k0[m];
-                seq!(J in 1..$stages {
-                    if T.b[J] != 0.0 {
-                        acc += (h * T.b[J]) * dk[J].as_slice()[m];
-                    }
-                });
-                out[m] = acc;
+            let mut m = 0;
+            while m + LANES <= n {
+                delta_block!(T, 4, $stages, m, h, k0, dk, out);
+                m += LANES;
+            }
+            while m < n {
+                delta_block!(T, 1, $stages, m, h, k0, dk, out);
+                m += 1;
             }
             true
         }
@@ -185,18 +284,14 @@ macro_rules! kernel {
             let n = e5.dim();
             let o5 = &mut e5.as_mut_slice()[..n];
             let o3 = &mut e3.as_mut_slice()[..n];
-            for m in 0..n {
-                let (mut a5, mut a3) = (0.0_f64, 0.0_f64);
-                seq!(J in 0..$s {
-                    if W5[J] != 0.0 {
-                        a5 += W5[J] * k[J].as_slice()[m];
-                    }
-                    if W3[J] != 0.0 {
-                        a3 += W3[J] * k[J].as_slice()[m];
-                    }
-                });
-                o5[m] = a5;
-                o3[m] = a3;
+            let mut m = 0;
+            while m + LANES <= n {
+                error_block!(W5, W3, 4, $s, m, k, o5, o3);
+                m += LANES;
+            }
+            while m < n {
+                error_block!(W5, W3, 1, $s, m, k, o5, o3);
+                m += 1;
             }
             true
         }
