@@ -21,20 +21,6 @@ use crate::tables::explicit::{DOP853, DP5, RK4};
 use crate::tables::rk_pairs::{TSIT5, VERN6, VERN7, VERN8, VERN9};
 use crate::tables::{ErrorEstimator, ExplicitTableau};
 
-/// Which stage sums a stepper uses: the generic loops, or one of the unrolled kernels.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(super) enum Kernel {
-    Generic,
-    Rk4,
-    Dp5,
-    Tsit5,
-    Dop853,
-    Vern6,
-    Vern7,
-    Vern8,
-    Vern9,
-}
-
 thread_local! {
     /// Kernels already chosen on this thread, by the address of their table.
     static CHOSEN: RefCell<Vec<(usize, Kernel)>> = const { RefCell::new(Vec::new()) };
@@ -55,7 +41,7 @@ impl Kernel {
         if let Some(kernel) = known {
             return kernel;
         }
-        let kernel = Self::by_comparison(table);
+        let kernel = builtin(table);
         CHOSEN.with_borrow_mut(|c| {
             if c.len() < REMEMBERED {
                 c.push((address, kernel));
@@ -63,59 +49,39 @@ impl Kernel {
         });
         kernel
     }
+}
 
-    fn by_comparison<const S: usize>(table: &ExplicitTableau<S>) -> Self {
-        fn is<const A: usize, const B: usize>(
-            x: &ExplicitTableau<A>,
-            y: &ExplicitTableau<B>,
-        ) -> bool {
-            if A != B {
-                return false;
-            }
-            if std::ptr::eq(x.a.as_ptr().cast::<f64>(), y.a.as_ptr().cast::<f64>()) {
-                return true;
-            }
-            x.name == y.name
-                && x.order == y.order
-                && x.stages == y.stages
-                && x.fsal == y.fsal
-                && x.c[..] == y.c[..]
-                && x.b[..] == y.b[..]
-                && x.a.iter().zip(&y.a).all(|(p, q)| p[..] == q[..])
-                && match (&x.error, &y.error) {
-                    (ErrorEstimator::None, ErrorEstimator::None) => true,
-                    (
-                        ErrorEstimator::Embedded { weights: w, .. },
-                        ErrorEstimator::Embedded { weights: v, .. },
-                    ) => w[..] == v[..],
-                    (
-                        ErrorEstimator::Dop853 { e5: a5, e3: a3, .. },
-                        ErrorEstimator::Dop853 { e5: b5, e3: b3, .. },
-                    ) => a5[..] == b5[..] && a3[..] == b3[..],
-                    _ => false,
-                }
-        }
-        // The constructors' tables first: the same reference, so the pointer test settles it.
-        if is(table, ExplicitRungeKutta::rk4().table) {
-            Self::Rk4
-        } else if is(table, ExplicitRungeKutta::dp5().table) {
-            Self::Dp5
-        } else if is(table, ExplicitRungeKutta::tsit5().table) {
-            Self::Tsit5
-        } else if is(table, ExplicitRungeKutta::dop853().table) {
-            Self::Dop853
-        } else if is(table, ExplicitRungeKutta::vern6().table) {
-            Self::Vern6
-        } else if is(table, ExplicitRungeKutta::vern7().table) {
-            Self::Vern7
-        } else if is(table, ExplicitRungeKutta::vern8().table) {
-            Self::Vern8
-        } else if is(table, ExplicitRungeKutta::vern9().table) {
-            Self::Vern9
-        } else {
-            Self::Generic
-        }
+/// `x` and `y` are the same table: the same address, or every field that the stage and error
+/// sums read equal (with the name and orders).
+fn same_table<const A: usize, const B: usize>(
+    x: &ExplicitTableau<A>,
+    y: &ExplicitTableau<B>,
+) -> bool {
+    if A != B {
+        return false;
     }
+    if std::ptr::eq(x.a.as_ptr().cast::<f64>(), y.a.as_ptr().cast::<f64>()) {
+        return true;
+    }
+    x.name == y.name
+        && x.order == y.order
+        && x.stages == y.stages
+        && x.fsal == y.fsal
+        && x.c[..] == y.c[..]
+        && x.b[..] == y.b[..]
+        && x.a.iter().zip(&y.a).all(|(p, q)| p[..] == q[..])
+        && match (&x.error, &y.error) {
+            (ErrorEstimator::None, ErrorEstimator::None) => true,
+            (
+                ErrorEstimator::Embedded { weights: w, .. },
+                ErrorEstimator::Embedded { weights: v, .. },
+            ) => w[..] == v[..],
+            (
+                ErrorEstimator::Dop853 { e5: a5, e3: a3, .. },
+                ErrorEstimator::Dop853 { e5: b5, e3: b3, .. },
+            ) => a5[..] == b5[..] && a3[..] == b3[..],
+            _ => false,
+        }
 }
 
 /// The workspace a kernel writes: stages `k`, differences `dk[j] = k[j] − k[0]`, the stage
@@ -219,7 +185,7 @@ macro_rules! kernel {
     ($stages_fn:ident, $error_fn:ident, $tab:path, $s:tt, $stages:tt) => {
         /// Stages `1 … stages − 1` (stage 0 in `k[0]`) and `delta = h Σ bᵢ kᵢ`; `false`
         /// (nothing done) when the workspace is not shaped for this table.
-        pub(super) fn $stages_fn<Y: VectorState, P: Ode<Y> + ?Sized>(
+        pub(crate) fn $stages_fn<Y: VectorState, P: Ode<Y> + ?Sized>(
             problem: &P,
             t: f64,
             y: &Y,
@@ -274,7 +240,7 @@ macro_rules! kernel {
 
         /// The error estimator's stage sums `Σ eᵢ kᵢ` into `e5` (and DOP853's `Σ e3ᵢ kᵢ`
         /// into `e3`); `false` when the workspace is not shaped for this table.
-        pub(super) fn $error_fn<Y: VectorState>(k: &[Y], e5: &mut Y, e3: &mut Y) -> bool {
+        pub(crate) fn $error_fn<Y: VectorState>(k: &[Y], e5: &mut Y, e3: &mut Y) -> bool {
             const T: ExplicitTableau<$s> = $tab;
             const W5: [f64; $s] = first_error_weights(&T);
             const W3: [f64; $s] = second_error_weights(&T);
@@ -298,53 +264,85 @@ macro_rules! kernel {
     };
 }
 
-kernel!(rk4_stages, rk4_error, RK4, 5, 4);
-kernel!(dp5_stages, dp5_error, DP5, 7, 7);
-kernel!(tsit5_stages, tsit5_error, TSIT5, 7, 7);
-kernel!(dop853_stages, dop853_error, DOP853, 16, 12);
-kernel!(vern6_stages, vern6_error, VERN6, 12, 9);
-kernel!(vern7_stages, vern7_error, VERN7, 16, 10);
-kernel!(vern8_stages, vern8_error, VERN8, 21, 13);
-kernel!(vern9_stages, vern9_error, VERN9, 26, 16);
+/// The built-in tables with unrolled kernels: for each, its variant of [`Kernel`], its
+/// constructor, its `const` table, the table's size `S` and its stages per attempt. Generates
+/// [`Kernel`], the kernels, `builtin` (the variant of the first table a test accepts) and the
+/// dispatchers [`stages`] and [`error_sums`].
+macro_rules! builtin_kernels {
+    ($($variant:ident: $ctor:ident, $tab:path, $s:tt, $stages:tt;)*) => {
+        /// Which stage sums a stepper uses: the generic loops, or one of the unrolled kernels.
+        #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+        pub(super) enum Kernel {
+            Generic,
+            $($variant,)*
+        }
 
-/// Runs the unrolled stages of `kernel`; `false` for [`Kernel::Generic`] or a workspace not
-/// shaped for it (the caller then takes the generic path).
-#[inline]
-pub(super) fn stages<Y: VectorState, P: Ode<Y> + ?Sized>(
-    kernel: Kernel,
-    problem: &P,
-    t: f64,
-    y: &Y,
-    h: f64,
-    w: Work<'_, Y>,
-) -> bool {
-    match kernel {
-        Kernel::Generic => false,
-        Kernel::Rk4 => rk4_stages(problem, t, y, h, w),
-        Kernel::Dp5 => dp5_stages(problem, t, y, h, w),
-        Kernel::Tsit5 => tsit5_stages(problem, t, y, h, w),
-        Kernel::Dop853 => dop853_stages(problem, t, y, h, w),
-        Kernel::Vern6 => vern6_stages(problem, t, y, h, w),
-        Kernel::Vern7 => vern7_stages(problem, t, y, h, w),
-        Kernel::Vern8 => vern8_stages(problem, t, y, h, w),
-        Kernel::Vern9 => vern9_stages(problem, t, y, h, w),
-    }
+        /// Stage and error kernels, one module per table.
+        #[allow(non_snake_case)]
+        mod unrolled {
+            use super::*;
+            $(
+                pub(super) mod $variant {
+                    use super::*;
+                    kernel!(stages, error, $tab, $s, $stages);
+                }
+            )*
+        }
+
+        /// The variant of the built-in table equal to `table` (the constructors' tables
+        /// first: the same reference, so the pointer test settles it); [`Kernel::Generic`]
+        /// when none is.
+        fn builtin<const S: usize>(table: &ExplicitTableau<S>) -> Kernel {
+            $(
+                if same_table(table, ExplicitRungeKutta::$ctor().table) {
+                    return Kernel::$variant;
+                }
+            )*
+            Kernel::Generic
+        }
+
+        /// Runs the unrolled stages of `kernel`; `false` for [`Kernel::Generic`] or a
+        /// workspace not shaped for it (the caller then takes the generic path).
+        #[inline]
+        pub(super) fn stages<Y: VectorState, P: Ode<Y> + ?Sized>(
+            kernel: Kernel,
+            problem: &P,
+            t: f64,
+            y: &Y,
+            h: f64,
+            w: Work<'_, Y>,
+        ) -> bool {
+            match kernel {
+                Kernel::Generic => false,
+                $(Kernel::$variant => unrolled::$variant::stages(problem, t, y, h, w),)*
+            }
+        }
+
+        /// The error sums of `kernel` (see `error` of each kernel); `false` as for [`stages`].
+        #[inline]
+        pub(super) fn error_sums<Y: VectorState>(
+            kernel: Kernel,
+            k: &[Y],
+            e5: &mut Y,
+            e3: &mut Y,
+        ) -> bool {
+            match kernel {
+                Kernel::Generic => false,
+                $(Kernel::$variant => unrolled::$variant::error(k, e5, e3),)*
+            }
+        }
+    };
 }
 
-/// The error sums of `kernel` (see the `*_error` functions); `false` as for [`stages`].
-#[inline]
-pub(super) fn error_sums<Y: VectorState>(kernel: Kernel, k: &[Y], e5: &mut Y, e3: &mut Y) -> bool {
-    match kernel {
-        Kernel::Generic => false,
-        Kernel::Rk4 => rk4_error(k, e5, e3),
-        Kernel::Dp5 => dp5_error(k, e5, e3),
-        Kernel::Tsit5 => tsit5_error(k, e5, e3),
-        Kernel::Dop853 => dop853_error(k, e5, e3),
-        Kernel::Vern6 => vern6_error(k, e5, e3),
-        Kernel::Vern7 => vern7_error(k, e5, e3),
-        Kernel::Vern8 => vern8_error(k, e5, e3),
-        Kernel::Vern9 => vern9_error(k, e5, e3),
-    }
+builtin_kernels! {
+    Rk4: rk4, RK4, 5, 4;
+    Dp5: dp5, DP5, 7, 7;
+    Tsit5: tsit5, TSIT5, 7, 7;
+    Dop853: dop853, DOP853, 16, 12;
+    Vern6: vern6, VERN6, 12, 9;
+    Vern7: vern7, VERN7, 16, 10;
+    Vern8: vern8, VERN8, 21, 13;
+    Vern9: vern9, VERN9, 26, 16;
 }
 
 #[cfg(test)]
