@@ -40,6 +40,9 @@
 //! the same roundings as forming them term by term, one subtraction per stage instead of one
 //! per nonzero coefficient.
 //!
+//! For the built-in tables the same sums are unrolled with the coefficients as constants
+//! (`kernels`), with the same terms in the same order, so both paths agree bit for bit.
+//!
 //! # References
 //! See [`crate::tables::explicit`] and [`crate::tables::rk_pairs`].
 
