@@ -592,7 +592,7 @@ impl<const S: usize, Y: VectorState, P: Ode<Y>> DenseOutput<P> for ExplicitRkSte
     }
 }
 
-/// Width of the register blocks of [`combine`].
+/// Width of the register blocks of [`combine`] and of the unrolled kernels.
 const LANES: usize = 4;
 
 /// `out = base + (w₀ x₀ + Σ_j w_j x_j)` componentwise, terms with `w_j = 0` left out (`base`

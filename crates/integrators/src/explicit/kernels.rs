@@ -14,7 +14,7 @@ use std::cell::RefCell;
 
 use seq_macro::seq;
 
-use super::ExplicitRungeKutta;
+use super::{ExplicitRungeKutta, LANES};
 use crate::problem::Ode;
 use crate::state::VectorState;
 use crate::tables::explicit::{DOP853, DP5, RK4};
@@ -178,9 +178,6 @@ macro_rules! error_block {
     }};
 }
 
-/// Width of the blocks the kernels sum in (the rest of the components one at a time).
-const LANES: usize = 4;
-
 macro_rules! kernel {
     ($stages_fn:ident, $error_fn:ident, $tab:path, $s:tt, $stages:tt) => {
         /// Stages `1 … stages − 1` (stage 0 in `k[0]`) and `delta = h Σ bᵢ kᵢ`; `false`
@@ -207,7 +204,7 @@ macro_rules! kernel {
                     let out = &mut w.ytmp.as_mut_slice()[..n];
                     let mut m = 0;
                     while m + LANES <= n {
-                        stage_block!(T, 4, I, m, h, k0, dk, ys, out);
+                        stage_block!(T, LANES, I, m, h, k0, dk, ys, out);
                         m += LANES;
                     }
                     while m < n {
@@ -228,7 +225,7 @@ macro_rules! kernel {
             let out = &mut w.delta.as_mut_slice()[..n];
             let mut m = 0;
             while m + LANES <= n {
-                delta_block!(T, 4, $stages, m, h, k0, dk, out);
+                delta_block!(T, LANES, $stages, m, h, k0, dk, out);
                 m += LANES;
             }
             while m < n {
@@ -252,7 +249,7 @@ macro_rules! kernel {
             let o3 = &mut e3.as_mut_slice()[..n];
             let mut m = 0;
             while m + LANES <= n {
-                error_block!(W5, W3, 4, $s, m, k, o5, o3);
+                error_block!(W5, W3, LANES, $s, m, k, o5, o3);
                 m += LANES;
             }
             while m < n {
