@@ -499,12 +499,14 @@ fn long(
             let step = work_precision::matching_step(scene, params, &name, h, target, t_end);
             stop_if_interrupted(dir)?;
             match step {
-                Ok((step, cost)) if (cost / target).ln().abs() > 1.5f64.ln() => eprintln!(
-                    "                {name}: left out, no step at that cost (closest that \
+                Ok((step, cost)) if work_precision::cost_distance(cost, target) > 1.5f64.ln() => {
+                    eprintln!(
+                        "                {name}: left out, no step at that cost (closest that \
                      ran: dt = {step:.4e} s at {:.2}× the cost; its longer steps failed or \
                      cost more)",
-                    cost / target
-                ),
+                        cost / target
+                    )
+                }
                 Ok((step, cost)) => {
                     eprintln!(
                         "                {name} at dt = {step:.4e} s costs {} ({:.2}×)",

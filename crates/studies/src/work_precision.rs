@@ -763,6 +763,13 @@ pub fn cost_per_second(
     Ok(median(&mut times) / t_probe)
 }
 
+/// How far a cost lies from a target cost: `|ln(cost / target)|`, the same for 2× above and 2×
+/// below.
+#[must_use]
+pub fn cost_distance(cost: f64, target: f64) -> f64 {
+    (cost / target).ln().abs()
+}
+
 /// The tolerance among `1e-4 … 1e-13` (decades) at which `adaptive` costs closest (in the
 /// log) to `target` seconds per simulated second, probed over `t_probe`, with its cost.
 ///
@@ -785,7 +792,7 @@ pub fn matching_tolerance(
             StepControl::Tolerance(tol),
             t_probe,
         )?;
-        let distance = (cost / target).ln().abs();
+        let distance = cost_distance(cost, target);
         if distance < best.2 {
             best = (tol, cost, distance);
         }
@@ -827,7 +834,7 @@ pub fn matching_step(
     let mut best = ok;
     let mut failed = f64::INFINITY;
     for _ in 0..8 {
-        if (best.1 / target).ln().abs() < 0.1 {
+        if cost_distance(best.1, target) < 0.1 {
             break;
         }
         let mut step = ok.0 * ok.1 / target;
@@ -841,7 +848,7 @@ pub fn matching_step(
         match probe(step) {
             Ok(cost) => {
                 ok = (step, cost);
-                if (cost / target).ln().abs() < (best.1 / target).ln().abs() {
+                if cost_distance(cost, target) < cost_distance(best.1, target) {
                     best = ok;
                 }
             }

@@ -135,9 +135,9 @@ pub static CORIOLIS_DROP: SceneInfo = SceneInfo {
 static CORIOLIS_DROP_RECOMMENDED: [Recommendation; 1] = [Recommendation {
     purpose: "any accuracy",
     finest_error: Some(1e-12),
-    integrators: &["rk4", "dp5"],
-    evidence: "the fall is nearly a polynomial in t: to 1e-12 at t = 60 s in 1.8 and 2.1 µs, \
-               dop853 5.2 µs",
+    integrators: &["rk4", "gauss8"],
+    evidence: "the fall is nearly a polynomial in t: to 1e-12 at t = 60 s in 2.8 and 3.4 µs, \
+               dop853 7.8 µs",
 }];
 
 /// Runs `coriolis-drop` until the body lands (or the horizon).

@@ -552,13 +552,13 @@ static DRIVEN_HOOP_RECOMMENDED: [Recommendation; 3] = [
         purpose: "error 1e-4 … 1e-8 at t = 10 s",
         finest_error: Some(1e-8),
         integrators: &["vern9", "vern8"],
-        evidence: "to 1e-8 in 58 µs each, dop853 66 µs",
+        evidence: "to 1e-8 in 35 and 39 µs, dop853 41 µs",
     },
     Recommendation {
         purpose: "error 1e-8 … 1e-12",
         finest_error: Some(1e-12),
         integrators: &["vern9"],
-        evidence: "to 1e-12 in 92 µs, vern8 102 µs, dop853 141 µs",
+        evidence: "to 1e-12 in 62 µs, vern8 79 µs, dop853 111 µs",
     },
     Recommendation {
         purpose: "Jacobi integral over 10^6 steps and more",
@@ -677,15 +677,15 @@ static SPINNING_HOOP_RECOMMENDED: [Recommendation; 3] = [
     Recommendation {
         purpose: "error 1e-4 … 1e-8 at t = 10 s",
         finest_error: Some(1e-8),
-        integrators: &["vern8", "vern9"],
-        evidence: "to 1e-8 in 189 and 194 µs, dop853 209 µs",
+        integrators: &["vern9", "vern8"],
+        evidence: "to 1e-8 in 177 and 187 µs, dop853 241 µs",
     },
     Recommendation {
         purpose: "error 1e-8 … 1e-12",
         finest_error: Some(1e-12),
-        integrators: &["gauss12", "kahan-li8"],
-        evidence: "to 1e-12 in 550 and 558 µs; the explicit pairs level off between 1e-12 and \
-                   1e-11",
+        integrators: &["kahan-li8", "gauss10"],
+        evidence: "to 1e-12 in 662 and 845 µs (671 and 650 µs in a second run; gauss12 969 \
+                   and 739 µs); the explicit pairs level off between 1e-12 and 1e-11",
     },
     Recommendation {
         purpose: "energy over 10^6 steps and more",

@@ -267,20 +267,20 @@ static FREE_BODY_RECOMMENDED: [Recommendation; 4] = [
         purpose: "any accuracy",
         finest_error: Some(1e-12),
         integrators: &["split-exact2"],
-        evidence: "the torque-free flow is exact in this splitting: 4.3 µs to t = 20 s, \
+        evidence: "the torque-free flow is exact in this splitting: 4.1 µs to t = 20 s, \
                    1.7e-14 at the default step",
     },
     Recommendation {
         purpose: "a general method, error 1e-4 … 1e-8 at t = 20 s",
         finest_error: Some(1e-8),
         integrators: &["vern8"],
-        evidence: "to 1e-8 in 23 µs, dop853 27 µs",
+        evidence: "to 1e-8 in 15 µs, dop853 19 µs",
     },
     Recommendation {
         purpose: "a general method, error 1e-8 … 1e-12",
         finest_error: Some(1e-12),
         integrators: &["vern9", "vern8"],
-        evidence: "to 1e-12 in 53 and 57 µs, dop853 71 µs",
+        evidence: "to 1e-12 in 31 and 35 µs, dop853 48 µs",
     },
     Recommendation {
         purpose: "energy over 10^6 steps and more",
@@ -458,8 +458,9 @@ static DZHANIBEKOV_RECOMMENDED: [Recommendation; 3] = [
     Recommendation {
         purpose: "a general method, error 1e-4 … 1e-10 at t = 10 s",
         finest_error: Some(1e-10),
-        integrators: &["vern7", "vern9"],
-        evidence: "to 1e-8 in 214 and 251 µs, dop853 323 µs",
+        integrators: &["vern7", "dop853"],
+        evidence: "to 1e-10 in 718 µs and 1.01 ms (vern9 1.16 ms; vern8, 287 µs to 1e-8, \
+                   does not reach 1e-10)",
     },
     Recommendation {
         purpose: "energy over 10^6 steps and more",
@@ -608,15 +609,15 @@ static HEAVY_TOP_RECOMMENDED: [Recommendation; 3] = [
     Recommendation {
         purpose: "error 1e-4 … 1e-8 at t = 10 s",
         finest_error: Some(1e-8),
-        integrators: &["split-exact8", "vern7"],
-        evidence: "to 1e-8 in 263 µs (kicks around the exact free flow: only gravity's part \
-                   has an error), vern7 1.09 ms, dop853 1.18 ms",
+        integrators: &["split-exact8", "vern8"],
+        evidence: "to 1e-8 in 325 µs (kicks around the exact free flow: only gravity's part \
+                   has an error), vern8 783 µs, dop853 911 µs",
     },
     Recommendation {
         purpose: "error 1e-8 … 1e-12",
         finest_error: Some(1e-12),
         integrators: &["split-exact8", "vern9"],
-        evidence: "to 1e-12 in 887 µs, vern9 3.15 ms, dop853 2.74 ms",
+        evidence: "to 1e-12 in 899 µs, vern9 2.58 ms, dop853 3.49 ms",
     },
     Recommendation {
         purpose: "energy over 10^6 steps and more",
