@@ -21,11 +21,17 @@
 //!   the flattened `free-hoop` and `free-body` equations against the cost of its right-hand-side
 //!   evaluations alone (module [`step_overhead`]).
 //!
+//! - `lie-gauss-solve/free-hoop/<method>`: where a step of the variational Lie–Gauss methods
+//!   goes on `free-hoop` at the step that reaches 1e-8 (module [`lie_gauss_solve`]).
+//!
 //! Run: `cargo bench --bench integrators` (`-- rigid` for the rigid-body group only,
-//! `-- step-overhead` for the per-step overhead).
+//! `-- step-overhead` for the per-step overhead, `-- lie-gauss-solve` for the Lie–Gauss
+//! solves).
 
 use std::hint::black_box;
 
+#[path = "groups/lie_gauss_solve.rs"]
+mod lie_gauss_solve;
 #[path = "groups/step_overhead.rs"]
 mod step_overhead;
 
@@ -338,6 +344,7 @@ criterion_group!(
     bench_steps,
     bench_peers,
     bench_rigid,
-    step_overhead::bench_step_overhead
+    step_overhead::bench_step_overhead,
+    lie_gauss_solve::bench_lie_gauss_solve
 );
 criterion_main!(benches);
