@@ -684,8 +684,8 @@ static SPINNING_HOOP_RECOMMENDED: [Recommendation; 3] = [
         purpose: "error 1e-8 … 1e-12",
         finest_error: Some(1e-12),
         integrators: &["kahan-li8", "gauss10"],
-        evidence: "to 1e-12 in 662 and 845 µs (671 and 650 µs in a second run; gauss12 969 \
-                   and 739 µs); the explicit pairs level off between 1e-12 and 1e-11",
+        evidence: "to 1e-12 in 662 and 845 µs, in a second run 671 and 650 µs, gauss12 969 \
+                   and 739 µs; the explicit pairs level off between 1e-12 and 1e-11",
     },
     Recommendation {
         purpose: "energy over 10^6 steps and more",
