@@ -10,11 +10,12 @@
 //! potential derivatives, timed alone at the run's states). The rest is the solver: the chart
 //! maps (`exp`, `J_r⁻¹` and its derivative) around each evaluation, the finite-difference
 //! Jacobian and its factorizations, and the eigenbasis solves of every iteration. Times are
-//! the fastest of 21 samples of at least 5 ms, the methods taking turns.
+//! the fastest of 21 samples of at least 5 ms, the evaluation and the methods taking turns
+//! (the sampling of `step-overhead`).
 
 use std::cell::Cell;
 use std::hint::black_box;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use criterion::Criterion;
 use nalgebra::{Matrix3, SVector, Vector3};
@@ -26,12 +27,10 @@ use tumble_integrators::tables::gauss::{GAUSS4, GAUSS6, GAUSS8, GAUSS10};
 use tumble_scenarios::Scene;
 use tumble_scenarios::scenes::free_hoop::{FreeHoop, FreeHoopScene};
 
+use crate::step_overhead::{Entry, time_all};
+
 /// Horizon (s).
 const T_END: f64 = 10.0;
-/// Samples per entry (the fastest is reported).
-const SAMPLES: usize = 21;
-/// A sample repeats its run until it lasts this long (s).
-const MIN_SAMPLE_SECONDS: f64 = 0.005;
 
 /// The model counting its kinetic jets (one per stage rate).
 struct Counting {
@@ -62,14 +61,17 @@ impl CoupledLagrangian<1> for Counting {
     }
 }
 
-/// `steps` steps of the `S`-stage method from the scene's initial state, reporting the
-/// iterations of each step to `seen`.
+/// What a run reports after each step: its Newton iterations and the state reached.
+type Seen<'a> = &'a mut dyn FnMut(usize, &CoupledState<1>);
+
+/// `steps` steps of the `S`-stage method from the scene's initial state, reporting each step
+/// to `seen`.
 fn run<const S: usize, L: CoupledLagrangian<1>>(
     table: &'static GaussTableau<S>,
     model: &L,
     s0: &CoupledState<1>,
     steps: u32,
-    seen: &mut dyn FnMut(usize),
+    seen: Seen<'_>,
 ) -> CoupledState<1> {
     let h = T_END / f64::from(steps);
     let mut st = CoupledLieGauss::<S, 1>::new(table);
@@ -77,7 +79,7 @@ fn run<const S: usize, L: CoupledLagrangian<1>>(
     for k in 0..steps {
         st.step(model, f64::from(k) * h, &mut s, h)
             .expect("lie-gauss step");
-        seen(st.last_iterations());
+        seen(st.last_iterations(), &s);
     }
     s
 }
@@ -88,7 +90,7 @@ fn run_index<L: CoupledLagrangian<1>>(
     model: &L,
     s0: &CoupledState<1>,
     steps: u32,
-    seen: &mut dyn FnMut(usize),
+    seen: Seen<'_>,
 ) -> CoupledState<1> {
     match index {
         0 => run(&GAUSS4, model, s0, steps, seen),
@@ -106,43 +108,60 @@ const METHODS: [(&str, u32); 4] = [
     ("lie-gauss10", 30),
 ];
 
-/// Seconds per call of `f`, the fastest of `SAMPLES` samples of at least `MIN_SAMPLE_SECONDS`.
-fn fastest(mut f: impl FnMut()) -> f64 {
-    let mut best = f64::INFINITY;
-    for _ in 0..SAMPLES {
-        let start = Instant::now();
-        let mut calls = 0u32;
-        while start.elapsed().as_secs_f64() < MIN_SAMPLE_SECONDS {
-            f();
-            calls += 1;
-        }
-        best = best.min(start.elapsed().as_secs_f64() / f64::from(calls));
-    }
-    best
-}
-
 pub fn bench_lie_gauss_solve(c: &mut Criterion) {
     let params = FreeHoopScene.info().default_params();
     let (model, s0) = FreeHoopScene::model(&params).expect("free-hoop model");
-    // The model's own work per stage rate, timed alone at states along a run.
+    // The model's own work per stage rate, timed alone at the states of a lie-gauss6 run.
     let mut states = Vec::new();
-    {
-        let h = T_END / 138.0;
-        let mut st = CoupledLieGauss::<3, 1>::new(&GAUSS6);
-        let mut s = s0;
-        for k in 0..138u32 {
-            st.step(&model, f64::from(k) * h, &mut s, h)
-                .expect("lie-gauss6 step");
-            states.push(s);
-        }
+    run_index(1, &model, &s0, METHODS[1].1, &mut |_, s| states.push(*s));
+    // Iterations and evaluations per step, counted once.
+    let counts: Vec<(f64, usize, usize, f64)> = METHODS
+        .iter()
+        .enumerate()
+        .map(|(index, &(_, steps))| {
+            let counting = Counting {
+                inner: model,
+                jets: Cell::new(0),
+            };
+            let (mut total, mut fewest, mut most) = (0usize, usize::MAX, 0usize);
+            run_index(index, &counting, &s0, steps, &mut |i, _| {
+                total += i;
+                fewest = fewest.min(i);
+                most = most.max(i);
+            });
+            let n = f64::from(steps);
+            (
+                total as f64 / n,
+                fewest,
+                most,
+                counting.jets.get() as f64 / n,
+            )
+        })
+        .collect();
+    // The evaluation and the runs, timed in turns.
+    let mut entries = vec![Entry {
+        label: "model evaluation".to_string(),
+        evaluations: 1.0,
+        run: Box::new(|| {
+            for s in &states {
+                let jet = model.kinetic_jet(black_box(&s.q));
+                let (m, vq) = model.potential_derivatives(black_box(&s.rotation), &s.q);
+                black_box((jet.blocks.rotational[(0, 0)], m, vq));
+            }
+        }),
+    }];
+    for (index, (&(name, steps), count)) in METHODS.iter().zip(&counts).enumerate() {
+        let (model, s0) = (&model, &s0);
+        entries.push(Entry {
+            label: name.to_string(),
+            evaluations: count.3,
+            run: Box::new(move || {
+                black_box(run_index(index, model, s0, steps, &mut |_, _| {}));
+            }),
+        });
     }
-    let evaluation = fastest(|| {
-        for s in &states {
-            let jet = model.kinetic_jet(black_box(&s.q));
-            let (m, vq) = model.potential_derivatives(black_box(&s.rotation), &s.q);
-            black_box((jet.blocks.rotational[(0, 0)], m, vq));
-        }
-    }) / states.len() as f64;
+    let times = time_all(&entries);
+    let evaluation = times[0] / states.len() as f64;
     println!(
         "lie-gauss-solve/free-hoop: model evaluation (kinetic jet + potential derivatives) {:.1} ns",
         evaluation * 1e9
@@ -151,22 +170,11 @@ pub fn bench_lie_gauss_solve(c: &mut Criterion) {
         "  {:<12} {:>6} {:>12} {:>10} {:>12} {:>12}",
         "method", "steps", "iterations", "evals/step", "µs/step", "model share"
     );
-    for (index, &(name, steps)) in METHODS.iter().enumerate() {
-        let counting = Counting {
-            inner: model,
-            jets: Cell::new(0),
-        };
-        let (mut total, mut fewest, mut most) = (0usize, usize::MAX, 0usize);
-        run_index(index, &counting, &s0, steps, &mut |i| {
-            total += i;
-            fewest = fewest.min(i);
-            most = most.max(i);
-        });
-        let per_step = counting.jets.get() as f64 / f64::from(steps);
-        let time = fastest(|| {
-            black_box(run_index(index, &model, &s0, steps, &mut |_| {}));
-        }) / f64::from(steps);
-        let iterations = format!("{:.1} ({fewest}–{most})", total as f64 / f64::from(steps));
+    for (index, (&(name, steps), &(mean, fewest, most, per_step))) in
+        METHODS.iter().zip(&counts).enumerate()
+    {
+        let time = times[1 + index] / f64::from(steps);
+        let iterations = format!("{mean:.1} ({fewest}–{most})");
         println!(
             "  {:<12} {:>6} {:>12} {:>10.1} {:>12.1} {:>11.1} %",
             name,
@@ -183,7 +191,7 @@ pub fn bench_lie_gauss_solve(c: &mut Criterion) {
         .measurement_time(Duration::from_secs(1));
     for (index, &(name, steps)) in METHODS.iter().enumerate() {
         g.bench_function(name, |b| {
-            b.iter(|| run_index(index, &model, &s0, steps, &mut |_| {}));
+            b.iter(|| run_index(index, &model, &s0, steps, &mut |_, _| {}));
         });
     }
     g.finish();

@@ -157,14 +157,14 @@ fn rhs_chained<const N: usize, P: Ode<SVector<f64, N>>>(problem: &P, states: &[S
 }
 
 /// One timed entry: a label, evaluations per step, and the run.
-struct Entry<'a> {
-    label: String,
-    evaluations: f64,
-    run: Box<dyn Fn() + 'a>,
+pub struct Entry<'a> {
+    pub label: String,
+    pub evaluations: f64,
+    pub run: Box<dyn Fn() + 'a>,
 }
 
 /// Fastest time of `run` per call (s), with every entry sampled in turns.
-fn time_all(entries: &[Entry<'_>]) -> Vec<f64> {
+pub fn time_all(entries: &[Entry<'_>]) -> Vec<f64> {
     let reps: Vec<u32> = entries
         .iter()
         .map(|e| {
