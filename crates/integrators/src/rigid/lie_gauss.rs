@@ -53,11 +53,14 @@
 //! by the second transform, written `J_r(u₁)(Π_k + h Σ bᵢ Eᵢ Mᵢ) − P₁ = 0`. The stages and `P₀`
 //! are solved together by simplified Newton: the matrix `𝟙 − hA ⊗ J` (`J` the Jacobian of the
 //! chart equations by forward differences, `d = 6 + 2N`) is applied through the
-//! eigendecomposition of the Gauss matrix `A`, one complex `d × d` system per conjugate pair of
-//! eigenvalues, and `P₀` is eliminated by a 3 × 3 Schur complement. `J` is taken at the start
-//! of a step, then once more at the stages' mean after the first iteration; a step that
-//! continues the last with the same `h` starts from the last step's matrix. Iteration runs
-//! until the increment reaches round-off. Since `J_r(u)⁻ᵀ = exp(hat u)ᵀ J_r(u)⁻¹`, the update is
+//! eigendecomposition of the Gauss matrix `A`, one complex `d × d` inverse per conjugate pair
+//! of eigenvalues, and `P₀` is eliminated by a 3 × 3 Schur complement that includes the
+//! impulse's dependence on the stages (`∂(E M)/∂z`, by the same differences). `J` is taken at
+//! the start of a step, then once more at the stages' mean after the first iteration; a step
+//! that continues the last with the same `h` starts from the last step's matrix, and from the
+//! last step's collocation polynomial continued to the new stage times and moved into the new
+//! chart (an `O(h^{s+1})` guess, against `O(h²)` for an Euler start). Iteration runs until the
+//! increment reaches round-off. Since `J_r(u)⁻ᵀ = exp(hat u)ᵀ J_r(u)⁻¹`, the update is
 //! written `Π_{k+1} = E₁ᵀ (Π_k + h Σ bᵢ Eᵢ Mᵢ)`, `R_{k+1} = R_k E₁`: the spatial momentum
 //! changes by exactly the quadrature of the spatial moments `h Σ bᵢ R_k Eᵢ Mᵢ`, whatever the
 //! iteration left, and the increments of `R` and `Π` are summed with Kahan compensation.
@@ -89,7 +92,7 @@
 
 use nalgebra::{Matrix3, SVector, Vector3};
 
-use tumble_kinematics::so3::{dexp as dexp_right, dexpinv, hat};
+use tumble_kinematics::so3::{dexp as dexp_right, dexpinv, exp_quat, hat, log_quat};
 
 use crate::error::{Error, check_step};
 use crate::rigid::coupled::{CoupledLagrangian, velocities_of};
@@ -335,6 +338,15 @@ enum Failure {
 
 type C64 = nalgebra::Complex<f64>;
 
+/// `W_u`, `W_P`, `W_ι`: how `u₁`, `P₁` and the impulse answer a change of `P₀` through the
+/// stages, `h Σ bⱼ J₀[•, ·] Yⱼ` ([`solve`]).
+#[derive(Debug, Clone, Copy)]
+struct Responses {
+    u: Matrix3<f64>,
+    p: Matrix3<f64>,
+    impulse: Matrix3<f64>,
+}
+
 /// Flat layout of a chart state or rate `(u, q, P, p)`: `d = 6 + 2N` entries.
 fn pack<const N: usize>(r: &Rates<N>, out: &mut [f64]) {
     out[..3].copy_from_slice(r.u.as_slice());
@@ -365,11 +377,23 @@ struct Newton<const S: usize> {
     lambda: [C64; S],
     /// 1 for a real eigenvalue, 2 for the first of a conjugate pair, 0 for the second.
     weight: [f64; S],
-    /// `(h, W_u, W_P)` of the factorization held, kept for the next step when it continues.
-    w: Option<(f64, Matrix3<f64>, Matrix3<f64>)>,
+    /// `(h, W)` of the factorization held, kept for the next step when it continues.
+    w: Option<(f64, Responses)>,
     jac: Vec<f64>,
+    /// `G = ∂(E M)/∂z` (3 × d, row-major), the rotated moment's dependence on a stage, and the
+    /// rotated moment at the state where `J` was formed.
+    moment_jac: Vec<f64>,
+    moment_base: Vector3<f64>,
     lu: Vec<C64>,
     pivots: Vec<usize>,
+    /// `(𝟙 − hλₖJ)⁻¹`, row-major, real and imaginary parts apart (`S d²` each), formed from
+    /// the LU factors: an iteration applies it as one matrix–vector product per eigenvalue,
+    /// whose rows are independent, instead of two triangular solves, whose are not.
+    inv_re: Vec<f64>,
+    inv_im: Vec<f64>,
+    /// `T⁻¹ g` of one eigenvalue, real and imaginary parts (`d` each).
+    hat_re: Vec<f64>,
+    hat_im: Vec<f64>,
     /// `Y`, `S d × 3`, stage-major.
     y: Vec<f64>,
     hat: Vec<C64>,
@@ -383,9 +407,76 @@ struct Newton<const S: usize> {
     tmp3: Vec<f64>,
     /// The start `z₀` (flat; its `P` block is `Π_k`, not the iterated `P₀`).
     origin: Vec<f64>,
+    /// The last step's solution, for the next step's starting guess: its stage values and its
+    /// start `z₀` with the solved `P₀` (flat, in the last step's chart), and `(h, u₁)`.
+    last_z: Vec<f64>,
+    last_origin: Vec<f64>,
+    last: Option<(f64, Vector3<f64>)>,
+    /// `ℓᵢⱼ`: the Lagrange basis of the nodes `0, c₁ … c_S` at `1 + cᵢ`, the last step's
+    /// collocation polynomial carried into this step (`j = 0` the node 0, `j = m` the node `c_m`).
+    extrapolation: [[f64; S]; S],
+    extrapolation_origin: [f64; S],
+    /// The same basis at `1`.
+    end: [f64; S],
+    end_origin: f64,
+}
+
+/// The Lagrange basis polynomial of node `m` of `0, c₁ … c_S` (node 0 is `0`) at `x`.
+fn lagrange<const S: usize>(c: &[f64; S], m: usize, x: f64) -> f64 {
+    let node = |j: usize| if j == 0 { 0.0 } else { c[j - 1] };
+    (0..=S)
+        .filter(|&j| j != m)
+        .map(|j| (x - node(j)) / (node(m) - node(j)))
+        .product()
 }
 
 impl<const S: usize> Newton<S> {
+    /// Starting stages for a step of length `h` that continues the last step with the same
+    /// `h`: the last step's collocation polynomial (through its start and its stages) at
+    /// `1 + cᵢ`, moved into this step's chart — `u` by `log(E₁ᵀ exp(hat u))`, the chart
+    /// momentum through the body momentum `Π = J_r(u)⁻ᵀ P` it represents, `P' = J_r(u')ᵀ Π` —
+    /// and returns the step's `P₀` guess, the body momentum of that polynomial at `1`. `None`
+    /// (and nothing written) when there is no such last step.
+    fn predict(&mut self, h: f64, pcol: usize) -> Option<Vector3<f64>> {
+        let (h_last, u1) = self.last?;
+        if h_last != h {
+            return None;
+        }
+        let d = self.d;
+        let back = exp_quat(&u1).inverse();
+        let to_chart = |v: &mut [f64]| {
+            let u_old = Vector3::new(v[0], v[1], v[2]);
+            let p_old = Vector3::new(v[pcol], v[pcol + 1], v[pcol + 2]);
+            let pi = dexpinv(&u_old).transpose() * p_old;
+            let u_new = log_quat(&(back * exp_quat(&u_old)));
+            let p_new = dexp_right(&u_new).transpose() * pi;
+            v[..3].copy_from_slice(u_new.as_slice());
+            v[pcol..pcol + 3].copy_from_slice(p_new.as_slice());
+        };
+        for i in 0..S {
+            for c in 0..d {
+                let mut acc = self.extrapolation_origin[i] * self.last_origin[c];
+                for m in 0..S {
+                    acc += self.extrapolation[i][m] * self.last_z[m * d + c];
+                }
+                self.z[i * d + c] = acc;
+            }
+            to_chart(&mut self.z[i * d..(i + 1) * d]);
+        }
+        // P₀: the polynomial's body momentum at 1 (in the new chart u = 0, where P = Π).
+        let mut end = [0.0; 3];
+        let mut u_end = [0.0; 3];
+        for (b, (e, ue)) in end.iter_mut().zip(u_end.iter_mut()).enumerate() {
+            *e = self.end_origin * self.last_origin[pcol + b];
+            *ue = self.end_origin * self.last_origin[b];
+            for m in 0..S {
+                *e += self.end[m] * self.last_z[m * d + pcol + b];
+                *ue += self.end[m] * self.last_z[m * d + b];
+            }
+        }
+        Some(dexpinv(&Vector3::from(u_end)).transpose() * Vector3::from(end))
+    }
+
     fn new(table: &GaussTableau<S>, n: usize) -> Self {
         let d = 6 + 2 * n;
         let a = faer::Mat::<f64>::from_fn(S, S, |i, j| table.a[i][j]);
@@ -433,8 +524,14 @@ impl<const S: usize> Newton<S> {
             weight,
             w: None,
             jac: vec![0.0; d * d],
+            moment_jac: vec![0.0; 3 * d],
+            moment_base: Vector3::zeros(),
             lu: vec![C64::new(0.0, 0.0); S * d * d],
             pivots: vec![0; S * d],
+            inv_re: vec![0.0; S * d * d],
+            inv_im: vec![0.0; S * d * d],
+            hat_re: vec![0.0; d],
+            hat_im: vec![0.0; d],
             y: vec![0.0; S * d * 3],
             hat: vec![C64::new(0.0, 0.0); S * d],
             z: vec![0.0; S * d],
@@ -445,10 +542,20 @@ impl<const S: usize> Newton<S> {
             tmp2: vec![0.0; d],
             tmp3: vec![0.0; d],
             origin: vec![0.0; d],
+            last_z: vec![0.0; S * d],
+            last_origin: vec![0.0; d],
+            last: None,
+            extrapolation: std::array::from_fn(|i| {
+                std::array::from_fn(|m| lagrange(&table.c, m + 1, 1.0 + table.c[i]))
+            }),
+            extrapolation_origin: std::array::from_fn(|i| lagrange(&table.c, 0, 1.0 + table.c[i])),
+            end: std::array::from_fn(|m| lagrange(&table.c, m + 1, 1.0)),
+            end_origin: lagrange(&table.c, 0, 1.0),
         }
     }
 
-    /// Factors `𝟙 − hλₖJ₀` for every eigenvalue (partial pivoting); `false` if one is singular.
+    /// Factors `𝟙 − hλₖJ₀` for every eigenvalue (partial pivoting) and forms its inverse from
+    /// the factors; `false` if one is singular.
     fn factor(&mut self, h: f64) -> bool {
         let d = self.d;
         for k in 0..S {
@@ -490,71 +597,86 @@ impl<const S: usize> Newton<S> {
                     }
                 }
             }
+            // Column e of the inverse: the permuted unit vector through both triangles.
+            let x = &mut self.hat[k * d..(k + 1) * d];
+            for e in 0..d {
+                x.iter_mut().for_each(|v| *v = C64::new(0.0, 0.0));
+                x[e] = C64::new(1.0, 0.0);
+                for col in 0..d {
+                    x.swap(col, piv[col]);
+                }
+                for i in 0..d {
+                    let mut acc = x[i];
+                    for j in 0..i {
+                        acc -= m[i * d + j] * x[j];
+                    }
+                    x[i] = acc;
+                }
+                for i in (0..d).rev() {
+                    let mut acc = x[i];
+                    for j in i + 1..d {
+                        acc -= m[i * d + j] * x[j];
+                    }
+                    x[i] = acc / m[i * d + i];
+                }
+                for (i, v) in x.iter().enumerate() {
+                    self.inv_re[k * d * d + i * d + e] = v.re;
+                    self.inv_im[k * d * d + i * d + e] = v.im;
+                }
+            }
         }
         true
     }
 
-    /// `dz = (𝟙 − hA ⊗ J₀)⁻¹ g` (both `S d`, stage-major) through the eigenbasis of `A`.
+    /// `dz = (𝟙 − hA ⊗ J₀)⁻¹ g` (both `S d`, stage-major) through the eigenbasis of `A`:
+    /// `dz_i = Σₖ wₖ Re(Tᵢₖ (𝟙 − hλₖJ₀)⁻¹ Σⱼ (T⁻¹)ₖⱼ gⱼ)`.
     fn apply_inverse(&mut self) {
         let d = self.d;
-        let rhs = &self.g;
+        self.dz.iter_mut().for_each(|x| *x = 0.0);
         for k in 0..S {
             if self.weight[k] == 0.0 {
                 continue;
             }
             for c in 0..d {
-                let mut acc = C64::new(0.0, 0.0);
+                let (mut re, mut im) = (0.0, 0.0);
                 for i in 0..S {
-                    acc += self.t_inv[k][i] * rhs[i * d + c];
+                    re += self.t_inv[k][i].re * self.g[i * d + c];
+                    im += self.t_inv[k][i].im * self.g[i * d + c];
                 }
-                self.hat[k * d + c] = acc;
+                self.hat_re[c] = re;
+                self.hat_im[c] = im;
             }
-            let m = &self.lu[k * d * d..(k + 1) * d * d];
-            let piv = &self.pivots[k * d..(k + 1) * d];
-            let x = &mut self.hat[k * d..(k + 1) * d];
-            for col in 0..d {
-                x.swap(col, piv[col]);
-            }
-            for i in 0..d {
-                let mut acc = x[i];
-                for j in 0..i {
-                    acc -= m[i * d + j] * x[j];
-                }
-                x[i] = acc;
-            }
-            for i in (0..d).rev() {
-                let mut acc = x[i];
-                for j in i + 1..d {
-                    acc -= m[i * d + j] * x[j];
-                }
-                x[i] = acc / m[i * d + i];
-            }
-        }
-        for i in 0..S {
+            let mr = &self.inv_re[k * d * d..(k + 1) * d * d];
+            let mi = &self.inv_im[k * d * d..(k + 1) * d * d];
             for c in 0..d {
-                let mut acc = 0.0;
-                for k in 0..S {
-                    if self.weight[k] != 0.0 {
-                        acc += self.weight[k] * (self.t[i][k] * self.hat[k * d + c]).re;
-                    }
+                let (rr, ri) = (&mr[c * d..(c + 1) * d], &mi[c * d..(c + 1) * d]);
+                let (mut xr, mut xi) = (0.0, 0.0);
+                for (((a, b), x), y) in rr.iter().zip(ri).zip(&self.hat_re).zip(&self.hat_im) {
+                    xr += a * x - b * y;
+                    xi += a * y + b * x;
                 }
-                self.dz[i * d + c] = acc;
+                let w = self.weight[k];
+                for i in 0..S {
+                    let t = self.t[i][k];
+                    self.dz[i * d + c] += w * (t.re * xr - t.im * xi);
+                }
             }
         }
     }
 }
 
-/// Forms `J = ∂F/∂z` at the chart state in `newton.tmp` (whose rates are in `newton.tmp2`) by
-/// forward differences, each coordinate stepped by √ε of its scale; factors `𝟙 − hλₖJ`; forms
-/// `Y = (𝟙 − hA ⊗ J)⁻¹ E` column by column; returns `W_u = h Σ bⱼ J[u, ·] Yⱼ` and
-/// `W_P = h Σ bⱼ J[P, ·] Yⱼ`.
+/// Forms `J = ∂F/∂z` and `G = ∂(E M)/∂z` at the chart state in `newton.tmp` (whose rates and
+/// rotated moment are in `newton.tmp2` and `newton.moment_base`) by forward differences, each
+/// coordinate stepped by √ε of its scale; inverts `𝟙 − hλₖJ`; forms `Y = (𝟙 − hA ⊗ J)⁻¹ E`
+/// column by column; returns `W_u = h Σ bⱼ J[u, ·] Yⱼ`, `W_P = h Σ bⱼ J[P, ·] Yⱼ` and
+/// `W_ι = h Σ bⱼ G Yⱼ`.
 fn linearize<M: StageModel<N>, const S: usize, const N: usize>(
     table: &GaussTableau<S>,
     newton: &mut Newton<S>,
     model: &M,
     r0: &Matrix3<f64>,
     h: f64,
-) -> Result<(Matrix3<f64>, Matrix3<f64>), Failure> {
+) -> Result<Responses, Failure> {
     let d = 6 + 2 * N;
     let pcol = 3 + N;
     let scale_p = (pcol..d)
@@ -573,10 +695,13 @@ fn linearize<M: StageModel<N>, const S: usize, const N: usize>(
         newton.tmp[c] = base + step;
         let z = unpack::<N>(&newton.tmp);
         newton.tmp[c] = base;
-        let (kc, _) = rates(model, r0, &z.u, &z.q, &z.pu, &z.p).ok_or(Failure::Singular)?;
+        let (kc, mc) = rates(model, r0, &z.u, &z.q, &z.pu, &z.p).ok_or(Failure::Singular)?;
         pack(&kc, &mut newton.tmp3);
         for r in 0..d {
             newton.jac[r * d + c] = (newton.tmp3[r] - newton.tmp2[r]) / step;
+        }
+        for r in 0..3 {
+            newton.moment_jac[r * d + c] = (mc[r] - newton.moment_base[r]) / step;
         }
     }
     if !newton.factor(h) {
@@ -592,53 +717,69 @@ fn linearize<M: StageModel<N>, const S: usize, const N: usize>(
             newton.y[x * 3 + c] = newton.dz[x];
         }
     }
-    let w = |first: usize| {
-        let cols: [Vector3<f64>; 3] = std::array::from_fn(|c| {
-            weighted_rows(table, &newton.jac, &newton.y, d, h, 3, c, first)
-        });
-        Matrix3::from_columns(&cols)
+    let mut w_u = Matrix3::zeros();
+    let mut w_p = Matrix3::zeros();
+    let mut w_i = Matrix3::zeros();
+    for c in 0..3 {
+        quadrature(table, &newton.y, h, 3, c, &mut newton.tmp3);
+        w_u.set_column(c, &rows3(&newton.jac, 0, &newton.tmp3));
+        w_p.set_column(c, &rows3(&newton.jac, pcol, &newton.tmp3));
+        w_i.set_column(c, &rows3(&newton.moment_jac, 0, &newton.tmp3));
+    }
+    let responses = Responses {
+        u: w_u,
+        p: w_p,
+        impulse: w_i,
     };
-    let (w_u, w_p) = (w(0), w(pcol));
-    newton.w = Some((h, w_u, w_p));
-    Ok((w_u, w_p))
+    newton.w = Some((h, responses));
+    Ok(responses)
 }
 
-/// `h Σⱼ bⱼ J[first + row, ·] xⱼ` for `row = 0, 1, 2`, with `xⱼ` column `col` of a stage-major
-/// array of `stride` columns.
-#[allow(clippy::too_many_arguments)]
-fn weighted_rows<const S: usize>(
+/// `out = h Σⱼ bⱼ xⱼ`, with `xⱼ` column `col` of a stage-major array of `stride` columns: the
+/// quadrature of a stage correction, which the rows of the one simplified-Newton Jacobian map
+/// to the corrections of `u₁`, `P₁` and the impulse (`h Σⱼ bⱼ J xⱼ = J h Σⱼ bⱼ xⱼ`).
+fn quadrature<const S: usize>(
     table: &GaussTableau<S>,
-    jac: &[f64],
     x: &[f64],
-    d: usize,
     h: f64,
     stride: usize,
     col: usize,
-    first: usize,
-) -> Vector3<f64> {
-    Vector3::from_fn(|row, _| {
+    out: &mut [f64],
+) {
+    let d = out.len();
+    for (c, o) in out.iter_mut().enumerate() {
         let mut acc = 0.0;
         for j in 0..S {
-            let mut dot = 0.0;
-            for cc in 0..d {
-                dot += jac[(first + row) * d + cc] * x[(j * d + cc) * stride + col];
-            }
-            acc += table.b[j] * dot;
+            acc += table.b[j] * x[(j * d + c) * stride + col];
         }
-        h * acc
+        *o = h * acc;
+    }
+}
+
+/// Rows `first … first + 2` of the row-major `rows × d` matrix `m` applied to `v`.
+fn rows3(m: &[f64], first: usize, v: &[f64]) -> Vector3<f64> {
+    let d = v.len();
+    Vector3::from_fn(|r, _| {
+        m[(first + r) * d..(first + r + 1) * d]
+            .iter()
+            .zip(v)
+            .map(|(a, b)| a * b)
+            .sum()
     })
 }
 
 /// One step of the `S`-stage method (module doc) from `(R_k, Π_k, q_k, p_k)`: simplified Newton
 /// on the stage values `Zᵢ` and the initial chart momentum `P₀` together.
 ///
-/// The Newton matrix is `[𝟙 − hA ⊗ J₀, −E; C, −D]` with `J₀ = ∂F/∂z` at the start (forward
-/// differences), `E` the stages' dependence on `P₀`, `D = J_r(u₁)⁻¹` and `C ≈ −D h (bᵀ ⊗ J₀[P, ·])`
-/// the transform's dependence on the stages (its remaining terms are `O(h |u₁|)` and only slow
-/// the iteration). Eliminating the stages leaves a 3 × 3 system for `ΔP₀`:
-/// `ΔP₀ = (𝟙 + W)⁻¹ (J_r(u₁) r − v)` with `W = h Σ bⱼ J₀[P, ·] Yⱼ`, `Y = (𝟙 − hA ⊗ J₀)⁻¹ E`,
-/// `v = h Σ bⱼ J₀[P, ·] Xⱼ` and `X = −(𝟙 − hA ⊗ J₀)⁻¹ G` the stage correction at fixed `P₀`;
-/// then `ΔZ = X + Y ΔP₀`.
+/// The unknowns are the stages `Z` and `P₀`; the equations are the stage equations
+/// `G = Z − z₀(P₀) − h (A ⊗ 𝟙) F(Z) = 0` and the transform
+/// `r = J_r(u₁)(Π_k + ι) − P₀ − h Σ bⱼ F_P(Zⱼ) = 0`, with `u₁ = h Σ bⱼ F_u(Zⱼ)` and the impulse
+/// `ι = h Σ bⱼ Eⱼ M(R_k Eⱼ, Qⱼ)`. Newton's matrix is taken with one Jacobian `J₀ = ∂F/∂z` and
+/// one `G₀ = ∂(E M)/∂z` for every stage (forward differences at the stages' mean). Eliminating
+/// the stages, `ΔZ = X + Y ΔP₀` with `X = −(𝟙 − hA ⊗ J₀)⁻¹ G` and `Y = (𝟙 − hA ⊗ J₀)⁻¹ E`
+/// (`E` the stages' dependence on `P₀`), leaves a 3 × 3 system
+/// `(𝟙 − D W_u + W_P − J_r(u₁) W_ι) ΔP₀ = r + D v_u − v_P + J_r(u₁) v_ι`, where
+/// `D = ∂(J_r(u₁) m)/∂u₁`, `W_• = h Σ bⱼ J₀[•, ·] Yⱼ` (`G₀` for `ι`) and `v_•` the same of `X`.
 #[allow(clippy::too_many_arguments)]
 fn solve<M: StageModel<N>, const S: usize, const N: usize>(
     table: &GaussTableau<S>,
@@ -655,7 +796,8 @@ fn solve<M: StageModel<N>, const S: usize, const N: usize>(
     let d = 6 + 2 * N;
     let pcol = 3 + N;
     let zero = Vector3::zeros();
-    let (k0, _) = rates(model, r0, &zero, q0, pi0, p0).ok_or(Failure::Singular)?;
+    let (k0, m0) = rates(model, r0, &zero, q0, pi0, p0).ok_or(Failure::Singular)?;
+    newton.moment_base = m0;
     let z0 = Rates {
         u: zero,
         q: *q0,
@@ -667,26 +809,24 @@ fn solve<M: StageModel<N>, const S: usize, const N: usize>(
     newton.tmp.copy_from_slice(&newton.origin);
     // A step that continues the last one with the same h starts from the last step's
     // mid-step factorization (simplified Newton across steps); any other starts from J at z₀.
-    let (mut w_u, mut w_p, reused) = match newton.w {
-        Some((h_last, w_u, w_p)) if reuse && h_last == h => (w_u, w_p, true),
-        _ => {
-            let (w_u, w_p) = linearize(table, newton, model, r0, h)?;
-            (w_u, w_p, false)
-        }
+    let (mut w, reused) = match newton.w {
+        Some((h_last, w)) if reuse && h_last == h => (w, true),
+        _ => (linearize(table, newton, model, r0, h)?, false),
     };
     // Linearizations after the start's (or the last step's kept matrix).
     let mut relinearized = 0u32;
-    // h Σ bⱼ J₀[rows, ·] xⱼ for the u rows (`first = 0`) or the P rows (`first = 3 + N`).
-    let weighted = |jac: &[f64], x: &[f64], stride: usize, col: usize, first: usize| {
-        weighted_rows(table, jac, x, d, h, stride, col, first)
-    };
-    // Start: Zᵢ = z₀ + cᵢ h F(z₀).
-    for i in 0..S {
-        for c in 0..d {
-            newton.z[i * d + c] = newton.origin[c] + table.c[i] * h * newton.tmp2[c];
+    // Start: the last step's collocation polynomial continued, if this step continues it with
+    // the same h; else Zᵢ = z₀ + cᵢ h F(z₀).
+    let predicted = if reuse { newton.predict(h, pcol) } else { None };
+    if predicted.is_none() {
+        for i in 0..S {
+            for c in 0..d {
+                newton.z[i * d + c] = newton.origin[c] + table.c[i] * h * newton.tmp2[c];
+            }
         }
     }
-    let mut chart_p0 = *pi0;
+    newton.last = None;
+    let mut chart_p0 = predicted.unwrap_or(*pi0);
     let mut moments = [Vector3::zeros(); S];
     let mut previous = f64::INFINITY;
     let mut iterations = 0;
@@ -727,13 +867,17 @@ fn solve<M: StageModel<N>, const S: usize, const N: usize>(
             }
         }
         newton.apply_inverse();
-        let v_u = weighted(&newton.jac, &newton.dz, 1, 0, 0);
-        let v_p = weighted(&newton.jac, &newton.dz, 1, 0, pcol);
+        quadrature(table, &newton.dz, h, 1, 0, &mut newton.tmp3);
+        let v_u = rows3(&newton.jac, 0, &newton.tmp3);
+        let v_p = rows3(&newton.jac, pcol, &newton.tmp3);
+        let v_i = rows3(&newton.moment_jac, 0, &newton.tmp3);
         let dm = jacobian_derivative(&Coefficients::new(u1.norm_squared()), &u1, &m);
-        let Some(schur) = (Matrix3::identity() - dm * w_u + w_p).try_inverse() else {
+        let jr1 = dexp_right(&u1);
+        let Some(schur) = (Matrix3::identity() - dm * w.u + w.p - jr1 * w.impulse).try_inverse()
+        else {
             return Err(Failure::Singular);
         };
-        let dp0 = schur * (r + dm * v_u - v_p);
+        let dp0 = schur * (r + dm * v_u - v_p + jr1 * v_i);
         // ΔZ = X + Y ΔP₀, measured block by block against the size of the block's values
         // (floors: the step's own scale, for blocks that are zero at the start).
         let mut change = [0.0f64; 4];
@@ -811,17 +955,19 @@ fn solve<M: StageModel<N>, const S: usize, const N: usize>(
         // iteration contracts less than twofold the matrix is formed again at the stages'
         // mean, up to three times a step.
         let first = relinearized == 0
-            && ((iterations == 1 && !reused) || (iterations >= 2 && theta > 0.05));
+            && ((iterations == 1 && !reused)
+                || (iterations >= 2 && theta > 0.05 && measure > 1e-9));
         if first || (relinearized < 3 && iterations >= 2 && theta > 0.5) {
             relinearized += 1;
             for c in 0..d {
                 newton.tmp[c] = (0..S).map(|i| table.b[i] * newton.z[i * d + c]).sum();
             }
             let mid = unpack::<N>(&newton.tmp);
-            let (km, _) =
+            let (km, mm) =
                 rates(model, r0, &mid.u, &mid.q, &mid.pu, &mid.p).ok_or(Failure::Singular)?;
             pack(&km, &mut newton.tmp2);
-            (w_u, w_p) = linearize(table, newton, model, r0, h)?;
+            newton.moment_base = mm;
+            w = linearize(table, newton, model, r0, h)?;
         }
         previous = measure;
     }
@@ -837,6 +983,11 @@ fn solve<M: StageModel<N>, const S: usize, const N: usize>(
         dq += ki.q * c;
         dp += ki.p * c;
     }
+    // Kept for the next step's starting guess.
+    newton.last_z.copy_from_slice(&newton.z);
+    newton.last_origin.copy_from_slice(&newton.origin);
+    newton.last_origin[pcol..pcol + 3].copy_from_slice(chart_p0.as_slice());
+    newton.last = Some((h, u1));
     // E₁ − 𝟙 from Rodrigues' formula (no rounding of 1 − O(θ²) on the diagonal).
     let co = Coefficients::new(u1.norm_squared());
     let uh = hat(&u1);
@@ -1195,5 +1346,90 @@ mod tests {
         check(&GAUSS6);
         check(&GAUSS8);
         check(&GAUSS10);
+    }
+
+    #[test]
+    fn extrapolation_basis_reproduces_polynomials_of_degree_s() {
+        fn check<const S: usize>(table: &GaussTableau<S>) {
+            let newton = Newton::<S>::new(table, 0);
+            // A polynomial of degree S with coefficients of both signs.
+            let p = |x: f64| (0..=S).fold(0.0, |acc, k| acc * x + (0.37 * k as f64 - 0.5));
+            let carried = |origin: f64, basis: &[f64; S], x: f64| {
+                let v = origin * p(0.0) + (0..S).map(|m| basis[m] * p(table.c[m])).sum::<f64>();
+                assert!(
+                    (v - p(x)).abs() < 1e-12 * p(x).abs().max(1.0),
+                    "S = {S} at {x}"
+                );
+            };
+            for i in 0..S {
+                carried(
+                    newton.extrapolation_origin[i],
+                    &newton.extrapolation[i],
+                    1.0 + table.c[i],
+                );
+            }
+            carried(newton.end_origin, &newton.end, 1.0);
+        }
+        check(&GAUSS4);
+        check(&GAUSS6);
+        check(&GAUSS8);
+        check(&GAUSS10);
+    }
+
+    /// The starting guess of a continuing step (the last step's collocation polynomial, moved
+    /// into the new chart) differs from that step's solution by `O(h^{S+1})`: on a heavy top,
+    /// halving `h` divides the difference by `2^{S+1}`.
+    #[test]
+    fn continued_collocation_polynomial_predicts_the_next_stages_to_order_s_plus_one() {
+        use crate::rigid::exact::FreeRigidBody;
+        use crate::rigid::problem::HeavyTop;
+        fn gap<const S: usize>(table: &GaussTableau<S>, top: &HeavyTop, h: f64) -> f64 {
+            let mut newton = Newton::<S>::new(table, 0);
+            let none = SVector::<f64, 0>::zeros();
+            let r0 = tumble_kinematics::so3::exp(&Vector3::new(0.3, -0.2, 0.4)).into_inner();
+            let pi0 = Vector3::new(0.3, -1.0, 2.0);
+            let step = |newton: &mut Newton<S>, r: &Matrix3<f64>, pi: &Vector3<f64>| {
+                let Ok((inc, _)) = solve(
+                    table,
+                    newton,
+                    &OnBody(top),
+                    r,
+                    pi,
+                    &none,
+                    &none,
+                    h,
+                    MAX_ITERATIONS,
+                    false,
+                ) else {
+                    panic!("the step at h = {h} did not converge");
+                };
+                (r + r * inc.rotation, pi + inc.momentum)
+            };
+            let (r1, pi1) = step(&mut newton, &r0, &pi0);
+            let Some(p0_guess) = newton.predict(h, 3) else {
+                panic!("no prediction after a step");
+            };
+            let guess = newton.z.clone();
+            let _ = step(&mut newton, &r1, &pi1);
+            let p0 = Vector3::from_column_slice(&newton.last_origin[3..6]);
+            guess
+                .iter()
+                .zip(&newton.last_z)
+                .map(|(a, b)| (a - b).abs())
+                .fold((p0_guess - p0).amax(), f64::max)
+        }
+        fn order<const S: usize>(table: &GaussTableau<S>, top: &HeavyTop) {
+            let (coarse, fine) = (gap(table, top, 0.1), gap(table, top, 0.05));
+            let observed = (coarse / fine).log2();
+            assert!(
+                (observed - (S + 1) as f64).abs() < 0.5,
+                "S = {S}: gaps {coarse:e}, {fine:e}, order {observed}"
+            );
+        }
+        let body = FreeRigidBody::from_principal_moments(Vector3::new(1.0, 2.0, 3.0)).unwrap();
+        let top = HeavyTop::new(body, 1.5, Vector3::new(0.1, -0.2, 0.5)).unwrap();
+        order(&GAUSS4, &top);
+        order(&GAUSS6, &top);
+        order(&GAUSS8, &top);
     }
 }
