@@ -105,7 +105,8 @@ use crate::tables::gauss::{GAUSS4, GAUSS6, GAUSS8, GAUSS10, GAUSS12};
 /// Newton iterations allowed per step before [`Error::NoConvergence`].
 pub const MAX_ITERATIONS: usize = 40;
 
-/// `sin θ/θ`, `a = (1 − cos θ)/θ²`, `b = (θ − sin θ)/θ³` and `a′`, `b′` (derivatives in `θ²`).
+/// `sin θ/θ`, `a = (1 − cos θ)/θ²`, `b = (θ − sin θ)/θ³`, `a′`, `b′` (derivatives in `θ²`) and
+/// `c = (1 − (θ/2) cot(θ/2))/θ²`, the coefficient of `hat u²` in `J_r(u)⁻¹ = 𝟙 + ½ hat u + c hat u²`.
 #[derive(Debug, Clone, Copy)]
 struct Coefficients {
     sinc: f64,
@@ -113,7 +114,40 @@ struct Coefficients {
     b: f64,
     da: f64,
     db: f64,
+    inv: f64,
 }
+
+/// `|B₂ₙ|/(2n)!` for `n = 1 … SERIES_TERMS` (Bernoulli numbers `B₂ … B₂₄`): the series
+/// `c = Σ |B₂ₙ|/(2n)! θ^{2n−2}` of `(1 − (θ/2) cot(θ/2))/θ²` (radius `θ = 2π`).
+const INV: [f64; SERIES_TERMS] = {
+    let bernoulli = [
+        1.0 / 6.0,
+        1.0 / 30.0,
+        1.0 / 42.0,
+        1.0 / 30.0,
+        5.0 / 66.0,
+        691.0 / 2730.0,
+        7.0 / 6.0,
+        3617.0 / 510.0,
+        43867.0 / 798.0,
+        174_611.0 / 330.0,
+        854_513.0 / 138.0,
+        236_364_091.0 / 2730.0,
+    ];
+    let mut c = [0.0; SERIES_TERMS];
+    let mut n = 0;
+    while n < SERIES_TERMS {
+        let mut factorial = 1.0;
+        let mut i = 2;
+        while i <= 2 * (n + 1) {
+            factorial *= i as f64;
+            i += 1;
+        }
+        c[n] = bernoulli[n] / factorial;
+        n += 1;
+    }
+    c
+};
 
 /// Terms of the Taylor series in `t = θ²` used below `θ = 1`: enough for round-off there
 /// (the first term left out is below 1/25! relative).
@@ -162,18 +196,22 @@ impl Coefficients {
                 b: horner(&B, t),
                 da: horner(&DA, t),
                 db: horner(&DB, t),
+                inv: horner(&INV, t),
             }
         } else {
             let theta = t.sqrt();
             let (s, c) = theta.sin_cos();
             let one_c = 1.0 - c;
             let th_s = theta - s;
+            // (θ/2) cot(θ/2) = θ sin θ / (2 (1 − cos θ)).
+            let half_cot = theta * s / (2.0 * one_c);
             Self {
                 sinc: s / theta,
                 a: one_c / t,
                 b: th_s / (theta * t),
                 da: (theta * s - 2.0 * one_c) / (2.0 * t * t),
                 db: (theta * one_c - 3.0 * th_s) / (2.0 * theta * t * t),
+                inv: (1.0 - half_cot) / t,
             }
         }
     }
@@ -297,7 +335,7 @@ fn rates<M: StageModel<N>, const N: usize>(
     let uh = hat(u);
     let uh2 = uh * uh;
     let jr = Matrix3::identity() - uh * co.a + uh2 * co.b;
-    let jr_inv = dexpinv(u);
+    let jr_inv = Matrix3::identity() + uh * 0.5 + uh2 * co.inv;
     let pi = jr_inv.transpose() * pu;
     let (omega, qdot, tq) = model.velocities(q, &pi, p)?;
     let w = jr_inv * omega;
@@ -1245,6 +1283,18 @@ mod tests {
             let co = Coefficients::new(t);
             let (s, c) = theta.sin_cos();
             assert!((co.sinc - s / theta).abs() < 1e-15, "sinc at {theta}");
+            let inv = 1.0 / t - (theta / 2.0).cos() / (theta / 2.0).sin() / (2.0 * theta);
+            assert!(
+                (co.inv - inv).abs() < 1e-13 / t.min(1.0),
+                "J_r⁻¹ coefficient at {theta}"
+            );
+            let u = Vector3::new(0.6, -0.48, 0.64) * theta;
+            let uh = hat(&u);
+            let jr_inv = Matrix3::identity() + uh * 0.5 + uh * uh * co.inv;
+            assert!(
+                (jr_inv * dexp(&u) - Matrix3::identity()).amax() < 1e-14,
+                "J_r⁻¹ J_r at {theta}"
+            );
             assert!(
                 (co.a - (1.0 - c) / t).abs() < 1e-13 / t.min(1.0),
                 "a at {theta}"
