@@ -666,6 +666,29 @@ impl<const S: usize> Newton<S> {
         true
     }
 
+    /// `Y = (𝟙 − hA ⊗ J₀)⁻¹ E`, `E` the unit vectors of the `P` block (`pcol …`) at every stage:
+    /// `T⁻¹` maps such a column to `(Σᵢ (T⁻¹)ₖᵢ) e`, so `Y`'s column `c` is
+    /// `Yⱼ = Σₖ wₖ Re(Tⱼₖ (Σᵢ (T⁻¹)ₖᵢ) (𝟙 − hλₖJ₀)⁻¹ e_{pcol + c})`, a column of each inverse.
+    fn respond_to_momentum(&mut self, pcol: usize) {
+        let d = self.d;
+        self.y.iter_mut().for_each(|x| *x = 0.0);
+        for k in 0..S {
+            if self.weight[k] == 0.0 {
+                continue;
+            }
+            let sum: C64 = self.t_inv[k].iter().sum();
+            for c in 0..3 {
+                for r in 0..d {
+                    let at = k * d * d + r * d + pcol + c;
+                    let x = sum * C64::new(self.inv_re[at], self.inv_im[at]);
+                    for j in 0..S {
+                        self.y[(j * d + r) * 3 + c] += self.weight[k] * (self.t[j][k] * x).re;
+                    }
+                }
+            }
+        }
+    }
+
     /// `dz = (𝟙 − hA ⊗ J₀)⁻¹ g` (both `S d`, stage-major) through the eigenbasis of `A`:
     /// `dz_i = Σₖ wₖ Re(Tᵢₖ (𝟙 − hλₖJ₀)⁻¹ Σⱼ (T⁻¹)ₖⱼ gⱼ)`.
     fn apply_inverse(&mut self) {
@@ -745,16 +768,7 @@ fn linearize<M: StageModel<N>, const S: usize, const N: usize>(
     if !newton.factor(h) {
         return Err(Failure::Singular);
     }
-    for c in 0..3 {
-        newton.g.iter_mut().for_each(|x| *x = 0.0);
-        for i in 0..S {
-            newton.g[i * d + pcol + c] = 1.0;
-        }
-        newton.apply_inverse();
-        for x in 0..S * d {
-            newton.y[x * 3 + c] = newton.dz[x];
-        }
-    }
+    newton.respond_to_momentum(pcol);
     let mut w_u = Matrix3::zeros();
     let mut w_p = Matrix3::zeros();
     let mut w_i = Matrix3::zeros();
@@ -1387,11 +1401,28 @@ mod tests {
                 id - h * table.a[i][j] * newton.jac[a * d + b]
             });
             let g = nalgebra::DVector::from_column_slice(&newton.g);
-            let x = m.lu().solve(&g).unwrap();
+            let lu = m.lu();
+            let x = lu.solve(&g).unwrap();
             let err = (0..n)
                 .map(|k| (x[k] - newton.dz[k]).abs())
                 .fold(0.0, f64::max);
             assert!(err < 1e-12 * x.amax(), "S = {S}: {err:e}");
+            // The response to the P block, Y = (𝟙 − hA ⊗ J)⁻¹ E, column by column.
+            let pcol = 4;
+            newton.respond_to_momentum(pcol);
+            for c in 0..3 {
+                let e = nalgebra::DVector::from_fn(
+                    n,
+                    |row, _| {
+                        if row % d == pcol + c { 1.0 } else { 0.0 }
+                    },
+                );
+                let y = lu.solve(&e).unwrap();
+                let err = (0..n)
+                    .map(|k| (y[k] - newton.y[k * 3 + c]).abs())
+                    .fold(0.0, f64::max);
+                assert!(err < 1e-12 * y.amax(), "S = {S}, Y column {c}: {err:e}");
+            }
         }
         check(&GAUSS6);
         check(&GAUSS8);
