@@ -16,9 +16,12 @@
 //!   which integrate exactly the same right-hand side ([`FlatFreeHoop`], 14 dimensions, wrapped
 //!   in their ODE traits; the wrappers only copy the 14 numbers in and out).
 //!
-//!   * Ours run through `Scene::simulate` with [`Observe::Ends`]: `dop853` (rtol = atol = tol),
-//!     `gauss6` … `gauss12`, `rk4` and the coupled Lie-group variational integrator `lgvi`
-//!     (`n` fixed steps of `t_end / n`). Peers run `t_end` at rtol = atol = tol from the
+//!   * Ours run through `Scene::simulate` with [`Observe::Ends`]: `dop853` and `vern8`
+//!     (rtol = atol = tol), `gauss6` … `gauss12`, `rk4`, the coupled Lie-group variational
+//!     integrator `lgvi` and its eighth-order composition `lgvi8`, and the variational
+//!     Lie–Gauss methods `lie-gauss6` … `lie-gauss10` (`n` fixed steps of `t_end / n`). The
+//!     solvers take turns in the timing, so the ratios between them (the variational methods
+//!     against DOP853, say) hold even when the machine's speed drifts. Peers run `t_end` at rtol = atol = tol from the
 //!     flattened initial state, with their default step control.
 //!   * The error is the project's work–precision metric
 //!     ([`tumble_studies::work_precision::state_error`]): `max |yᵢ − yᵢ,ref| / (1 + |yᵢ,ref|)`
@@ -162,8 +165,19 @@ const MIN_TOL_K: i32 = 15 * PER_OCTAVE;
 /// A safety net: a single run longer than this ends the search (s).
 const MAX_RUN_SECONDS: f64 = 30.0;
 /// Our candidate methods.
-const OURS: [&str; 7] = [
-    "dop853", "gauss6", "gauss8", "gauss10", "gauss12", "rk4", "lgvi",
+const OURS: [&str; 12] = [
+    "dop853",
+    "vern8",
+    "gauss6",
+    "gauss8",
+    "gauss10",
+    "gauss12",
+    "rk4",
+    "lgvi",
+    "lgvi8",
+    "lie-gauss6",
+    "lie-gauss8",
+    "lie-gauss10",
 ];
 
 /// The free hoop's right-hand side in the peer crates' traits.
@@ -627,7 +641,7 @@ fn report(hoop: &Hoop, choices: &[Choice]) {
         );
     }
     eprintln!(
-        "  (lgvi has no right-hand side: its \"RHS evals\" are its steps; \"coarser\" is the error one grid point coarser)"
+        "  (the variational methods lgvi, lgvi8 and lie-gauss* have no right-hand side: their \"RHS evals\" are their steps; \"coarser\" is the error one grid point coarser)"
     );
     let best = |peer: bool| {
         choices
@@ -659,6 +673,18 @@ fn report(hoop: &Hoop, choices: &[Choice]) {
                 "ours is SLOWER than the best peer"
             }
         );
+    }
+    // Each of ours against our DOP853, from the same interleaved samples.
+    if let Some(dop) = choices
+        .iter()
+        .find(|c| c.reached && c.solver == Solver::Ours("dop853"))
+    {
+        let ratios: Vec<String> = choices
+            .iter()
+            .filter(|c| c.reached && !c.solver.is_peer() && c.solver != Solver::Ours("dop853"))
+            .map(|c| format!("{} {:.2}", c.solver.name(), c.seconds / dop.seconds))
+            .collect();
+        eprintln!("time / ours dop853: {}", ratios.join(", "));
     }
     eprintln!();
 }

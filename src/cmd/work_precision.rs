@@ -195,6 +195,19 @@ pub fn run(args: &Args) -> Result<()> {
         eprintln!("  {name:<13} stopped: {}", ladder.stop);
         ladders.push(ladder);
     }
+    eprintln!(
+        "timing          every rung again, the methods taking turns ({} rounds)",
+        work_precision::RETIME_ROUNDS
+    );
+    let retimed = work_precision::retime(
+        scene,
+        &params,
+        &mut ladders,
+        &config,
+        work_precision::RETIME_ROUNDS,
+    );
+    stop_if_interrupted(&dir)?;
+    retimed?;
 
     output::write_whole(
         &dir.join("work-precision.csv"),

@@ -6,7 +6,9 @@
 //! the error of the final state against a [`Reference`], the largest relative energy error over
 //! the run, the right-hand-side evaluations and the wall time (the median of several repeats of
 //! a run that observes only its first and last state, [`Observe::Ends`], so that the diagnostics
-//! a row computes are not charged to the method).
+//! a row computes are not charged to the method). Once every ladder has run, [`retime`] times
+//! all rungs again in rounds in which the methods take turns, so that the ratios between
+//! methods do not depend on which one ran while the machine was slow.
 //!
 //! # The error
 //!
@@ -613,6 +615,79 @@ pub fn ladder(
         }
     }
     Ok(out)
+}
+
+/// Rounds of [`retime`] that `tumble work-precision` runs.
+pub const RETIME_ROUNDS: usize = 5;
+
+/// Times every rung of `ladders` again, the rungs taking turns: `rounds` rounds, in each of
+/// which every rung runs one batch of back-to-back runs observing only the ends (as many as
+/// last 5 ms by the rung's first timing; one for a run over 5 ms). Each rung's
+/// [`Rung::seconds`] becomes the median of its batches' means. A ladder times its rungs one
+/// method after another, so a change of the machine's speed during a study (another process's
+/// burst on a shared host) falls on some methods and not on others; taken in turns it falls on
+/// all of them alike, and the ratios between methods, which a study is read for, hold.
+///
+/// # Errors
+/// A rung's plan or run that fails now although it ran in its ladder.
+pub fn retime(
+    scene: &dyn Scene,
+    params: &Params,
+    ladders: &mut [Ladder],
+    config: &Config,
+    rounds: usize,
+) -> Result<(), SceneError> {
+    struct Job {
+        ladder: usize,
+        rung: usize,
+        plan: RunPlan,
+        batch: usize,
+        times: Vec<f64>,
+    }
+    let info = scene.info();
+    let limit = config.max_run_seconds * Config::CUT_FACTOR;
+    let mut jobs = Vec::new();
+    for (l, ladder) in ladders.iter().enumerate() {
+        if ladder.rungs.is_empty() {
+            continue;
+        }
+        let base = RunOptions {
+            integrator: Some(ladder.integrator.clone()),
+            t_end: Some(config.t_end),
+            ..RunOptions::default()
+        }
+        .resolve(info)?;
+        let base = if limit.is_finite() {
+            base.with_deadline(limit)
+        } else {
+            base
+        };
+        for (r, rung) in ladder.rungs.iter().enumerate() {
+            jobs.push(Job {
+                ladder: l,
+                rung: r,
+                plan: base.with_step(rung.control)?.observing(Observe::Ends),
+                batch: (5e-3 / rung.seconds.max(1e-9)).ceil().clamp(1.0, 1e5) as usize,
+                times: Vec::with_capacity(rounds),
+            });
+        }
+    }
+    for _ in 0..rounds {
+        for job in &mut jobs {
+            let start = Instant::now();
+            for _ in 0..job.batch {
+                final_state(scene, params, &job.plan)?;
+            }
+            job.times
+                .push(start.elapsed().as_secs_f64() / job.batch as f64);
+        }
+    }
+    for mut job in jobs {
+        let rung = &mut ladders[job.ladder].rungs[job.rung];
+        rung.seconds = median(&mut job.times);
+        rung.repeats += rounds * job.batch;
+    }
+    Ok(())
 }
 
 /// The least-squares slope of `log10 error` against `log10 x` over the rungs whose error lies

@@ -73,6 +73,38 @@ fn work_precision_slopes_match_the_methods_orders() {
     assert!(bad.is_empty(), "{bad:?}\nall: {report:#?}");
 }
 
+/// Timing the rungs again in turns ([`work_precision::retime`]) changes their times only: the
+/// runs (steps, evaluations, errors) stay, every rung gets a positive time from its rounds, and
+/// the repeats count the new runs.
+#[test]
+fn retimed_rungs_keep_their_runs_and_count_the_interleaved_repeats() {
+    let scene = find("heavy-top").unwrap();
+    let params = scene.info().default_params();
+    let reference = work_precision::reference(scene, &params, 1.0).unwrap();
+    let cfg = config(1.0, 2_000);
+    let mut ladders: Vec<_> = ["rk4", "dop853"]
+        .iter()
+        .map(|m| {
+            work_precision::ladder(scene, &params, m, &reference.state, &cfg, &mut |_| {}).unwrap()
+        })
+        .collect();
+    let before = ladders.clone();
+    work_precision::retime(scene, &params, &mut ladders, &cfg, 3).unwrap();
+    for (old, new) in before.iter().zip(&ladders) {
+        assert_eq!(old.rungs.len(), new.rungs.len());
+        assert!(!new.rungs.is_empty(), "{}: no rungs", new.integrator);
+        for (a, b) in old.rungs.iter().zip(&new.rungs) {
+            assert_eq!(
+                (a.control, a.steps, a.evaluations),
+                (b.control, b.steps, b.evaluations)
+            );
+            assert_eq!(a.error.to_bits(), b.error.to_bits());
+            assert!(b.seconds.is_finite() && b.seconds > 0.0, "{b:?}");
+            assert!(b.repeats >= a.repeats + 3, "{a:?} -> {b:?}");
+        }
+    }
+}
+
 /// `tumble work-precision` runs every built-in scene with every integrator it takes: each
 /// ladder has rungs with finite errors and gets at least ten times more accurate than its
 /// first rung (or starts at round-off: `coriolis-drop` before landing is nearly polynomial).
