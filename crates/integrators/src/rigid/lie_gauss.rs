@@ -459,6 +459,14 @@ struct Newton<const S: usize> {
     end_origin: f64,
 }
 
+/// Whether a step of length `h` continues one of length `last` with the same step: equal to a
+/// relative 1e-6. A fixed-step run takes `t_{k+1} − t_k` with `t_k = t₀ + k h`, whose rounding
+/// moves the length by up to `ulp(t_k)` (relative `1e-10` at `t = 10⁴`, `h = 0.01`); the kept
+/// Newton matrix and the carried polynomial are approximations far coarser than that.
+fn same_step(last: f64, h: f64) -> bool {
+    (h - last).abs() <= 1e-6 * h.abs()
+}
+
 /// The Lagrange basis polynomial of node `m` of `0, c₁ … c_S` (node 0 is `0`) at `x`.
 fn lagrange<const S: usize>(c: &[f64; S], m: usize, x: f64) -> f64 {
     let node = |j: usize| if j == 0 { 0.0 } else { c[j - 1] };
@@ -477,7 +485,7 @@ impl<const S: usize> Newton<S> {
     /// (and nothing written) when there is no such last step.
     fn predict(&mut self, h: f64, pcol: usize) -> Option<Vector3<f64>> {
         let (h_last, u1) = self.last?;
-        if h_last != h {
+        if !same_step(h_last, h) {
             return None;
         }
         let d = self.d;
@@ -862,7 +870,7 @@ fn solve<M: StageModel<N>, const S: usize, const N: usize>(
     // A step that continues the last one with the same h starts from the last step's
     // mid-step factorization (simplified Newton across steps); any other starts from J at z₀.
     let (mut w, reused) = match newton.w {
-        Some((h_last, w)) if reuse && h_last == h => (w, true),
+        Some((h_last, w)) if reuse && same_step(h_last, h) => (w, true),
         _ => (linearize(table, newton, model, r0, h)?, false),
     };
     // Linearizations after the start's (or the last step's kept matrix).
@@ -1455,6 +1463,77 @@ mod tests {
         check(&GAUSS6);
         check(&GAUSS8);
         check(&GAUSS10);
+    }
+
+    /// A fixed-step run's step lengths `t_{k+1} − t_k` differ in their last bits: such a step
+    /// still continues the last one — it keeps the last Newton matrix and starts from the
+    /// carried polynomial — and costs exactly what a step of the same length does (iterations and
+    /// model evaluations), less than a fresh start, which forms its matrix twice.
+    #[test]
+    fn a_step_whose_length_differs_by_rounding_continues_the_last() {
+        use crate::rigid::exact::FreeRigidBody;
+        use crate::rigid::problem::HeavyTop;
+        use std::cell::Cell;
+        struct Counting(HeavyTop, Cell<usize>);
+        impl RigidBody for Counting {
+            fn body(&self) -> &FreeRigidBody {
+                self.0.body()
+            }
+            fn potential(&self, rotation: &Matrix3<f64>) -> f64 {
+                self.0.potential(rotation)
+            }
+            fn torque(&self, rotation: &Matrix3<f64>) -> Vector3<f64> {
+                self.1.set(self.1.get() + 1);
+                self.0.torque(rotation)
+            }
+        }
+        let body = FreeRigidBody::from_principal_moments(Vector3::new(1.0, 2.0, 3.0)).unwrap();
+        let top = Counting(
+            HeavyTop::new(body, 1.5, Vector3::new(0.1, -0.2, 0.5)).unwrap(),
+            Cell::new(0),
+        );
+        let none = SVector::<f64, 0>::zeros();
+        let r0 = tumble_kinematics::so3::exp(&Vector3::new(0.3, -0.2, 0.4)).into_inner();
+        let pi0 = Vector3::new(0.3, -1.0, 2.0);
+        let h = 0.2;
+        // The iterations and the model evaluations of a second step of length `h2` after one
+        // of `h`.
+        let second = |h2: f64, reuse: bool| {
+            let mut newton = Newton::<4>::new(&GAUSS8, 0);
+            let mut step = |r: &Matrix3<f64>, pi: &Vector3<f64>, h: f64, reuse: bool| {
+                let Ok((inc, iterations)) = solve(
+                    &GAUSS8,
+                    &mut newton,
+                    &OnBody(&top),
+                    r,
+                    pi,
+                    &none,
+                    &none,
+                    h,
+                    MAX_ITERATIONS,
+                    reuse,
+                ) else {
+                    panic!("the step did not converge");
+                };
+                (r + r * inc.rotation, pi + inc.momentum, iterations)
+            };
+            let (r1, pi1, _) = step(&r0, &pi0, h, false);
+            top.1.set(0);
+            let iterations = step(&r1, &pi1, h2, reuse).2;
+            (iterations, top.1.get())
+        };
+        assert!(same_step(h, h * (1.0 + 1e-13)) && !same_step(h, h * 1.01));
+        let exact = second(h, true);
+        let rounded = second(h * (1.0 + 1e-13), true);
+        let fresh = second(h, false);
+        assert_eq!(
+            rounded, exact,
+            "(iterations, evaluations): rounded h, same h"
+        );
+        assert!(
+            exact.1 < fresh.1,
+            "evaluations: continued {exact:?}, fresh start {fresh:?}"
+        );
     }
 
     /// The starting guess of a continuing step (the last step's collocation polynomial, moved
