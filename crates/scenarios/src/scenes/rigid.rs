@@ -267,20 +267,21 @@ static FREE_BODY_RECOMMENDED: [Recommendation; 4] = [
         purpose: "any accuracy",
         finest_error: Some(1e-12),
         integrators: &["split-exact2"],
-        evidence: "the torque-free flow is exact in this splitting: 4.1 µs to t = 20 s, \
+        evidence: "the torque-free flow is exact in this splitting: 3.8 µs to t = 20 s, \
                    1.7e-14 at the default step",
     },
     Recommendation {
         purpose: "a general method, error 1e-4 … 1e-8 at t = 20 s",
         finest_error: Some(1e-8),
         integrators: &["vern8"],
-        evidence: "to 1e-8 in 15 µs, dop853 19 µs",
+        evidence: "to 1e-8 in 12.5 µs, dop853 17.0 µs",
     },
     Recommendation {
         purpose: "a general method, error 1e-8 … 1e-12",
         finest_error: Some(1e-12),
-        integrators: &["vern9", "vern8"],
-        evidence: "to 1e-12 in 31 and 35 µs, dop853 48 µs",
+        integrators: &["vern8", "vern9"],
+        evidence: "to 1e-12 in 26 and 27 µs (an earlier run: vern9 31, vern8 35 µs), dop853 \
+                   41 µs",
     },
     Recommendation {
         purpose: "energy over 10^6 steps and more",
@@ -610,14 +611,14 @@ static HEAVY_TOP_RECOMMENDED: [Recommendation; 3] = [
         purpose: "error 1e-4 … 1e-8 at t = 10 s",
         finest_error: Some(1e-8),
         integrators: &["split-exact8", "vern8"],
-        evidence: "to 1e-8 in 325 µs (kicks around the exact free flow: only gravity's part \
-                   has an error), vern8 783 µs, dop853 911 µs",
+        evidence: "to 1e-8 in 319 µs (kicks around the exact free flow: only gravity's part \
+                   has an error), vern8 829 µs, dop853 1.07 ms",
     },
     Recommendation {
         purpose: "error 1e-8 … 1e-12",
         finest_error: Some(1e-12),
         integrators: &["split-exact8", "vern9"],
-        evidence: "to 1e-12 in 899 µs, vern9 2.58 ms, dop853 3.49 ms",
+        evidence: "to 1e-12 in 983 µs, vern9 2.19 ms, dop853 3.42 ms",
     },
     Recommendation {
         purpose: "energy over 10^6 steps and more",
