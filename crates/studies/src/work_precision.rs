@@ -399,6 +399,29 @@ fn median(values: &mut [f64]) -> f64 {
     }
 }
 
+/// Back-to-back runs of `seconds` each that last at least 5 ms together (a single µs-scale run
+/// is at the mercy of a timer tick or a neighbour's burst).
+fn batch_for(seconds: f64) -> usize {
+    (5e-3 / seconds.max(1e-9)).ceil().clamp(1.0, 1e5) as usize
+}
+
+/// The plan of `integrator` over the study's horizon on `info`'s scene, cut at
+/// [`Config::CUT_FACTOR`] times the run limit: a ladder's rungs change only its step.
+fn ladder_plan(info: &SceneInfo, integrator: &str, config: &Config) -> Result<RunPlan, SceneError> {
+    let base = RunOptions {
+        integrator: Some(integrator.to_string()),
+        t_end: Some(config.t_end),
+        ..RunOptions::default()
+    }
+    .resolve(info)?;
+    let limit = config.max_run_seconds * Config::CUT_FACTOR;
+    Ok(if limit.is_finite() {
+        base.with_deadline(limit)
+    } else {
+        base
+    })
+}
+
 /// Runs one rung: a monitored run (error, energy, evaluations), then timed runs that observe
 /// only the ends (5 samples of at least 5 ms of back-to-back runs; 3 for runs over 0.1 s).
 ///
@@ -417,7 +440,7 @@ pub fn rung(
     // Timing: samples of back-to-back runs lasting at least 5 ms each (a single µs-scale run is
     // at the mercy of a timer tick or a neighbour's burst), the median of 5 samples (3 for runs
     // over 0.1 s).
-    let batch = (5e-3 / monitored.max(1e-9)).ceil().clamp(1.0, 1e5) as usize;
+    let batch = batch_for(monitored);
     let samples = if monitored < 0.1 { 5 } else { 3 };
     let quiet = plan.observing(Observe::Ends);
     let mut times = Vec::with_capacity(samples);
@@ -468,18 +491,7 @@ pub fn ladder(
 ) -> Result<Ladder, SceneError> {
     let info = scene.info();
     // The integrator's plan for this scene, validated once; rungs change only its step.
-    let base = RunOptions {
-        integrator: Some(integrator.to_string()),
-        t_end: Some(config.t_end),
-        ..RunOptions::default()
-    }
-    .resolve(info)?;
-    let limit = config.max_run_seconds * Config::CUT_FACTOR;
-    let base = if limit.is_finite() {
-        base.with_deadline(limit)
-    } else {
-        base
-    };
+    let base = ladder_plan(info, integrator, config)?;
     let method = base.method;
     let order = match method.order {
         Order::Finite(p) => Some(p),
@@ -645,29 +657,18 @@ pub fn retime(
         times: Vec<f64>,
     }
     let info = scene.info();
-    let limit = config.max_run_seconds * Config::CUT_FACTOR;
     let mut jobs = Vec::new();
     for (l, ladder) in ladders.iter().enumerate() {
         if ladder.rungs.is_empty() {
             continue;
         }
-        let base = RunOptions {
-            integrator: Some(ladder.integrator.clone()),
-            t_end: Some(config.t_end),
-            ..RunOptions::default()
-        }
-        .resolve(info)?;
-        let base = if limit.is_finite() {
-            base.with_deadline(limit)
-        } else {
-            base
-        };
+        let base = ladder_plan(info, &ladder.integrator, config)?;
         for (r, rung) in ladder.rungs.iter().enumerate() {
             jobs.push(Job {
                 ladder: l,
                 rung: r,
                 plan: base.with_step(rung.control)?.observing(Observe::Ends),
-                batch: (5e-3 / rung.seconds.max(1e-9)).ceil().clamp(1.0, 1e5) as usize,
+                batch: batch_for(rung.seconds),
                 times: Vec::with_capacity(rounds),
             });
         }

@@ -477,6 +477,13 @@ fn lagrange<const S: usize>(c: &[f64; S], m: usize, x: f64) -> f64 {
 }
 
 impl<const S: usize> Newton<S> {
+    /// Drops what the next step would carry over from the last: its Newton matrix and its
+    /// collocation polynomial.
+    fn forget(&mut self) {
+        self.w = None;
+        self.last = None;
+    }
+
     /// Starting stages for a step of length `h` that continues the last step with the same
     /// `h`: the last step's collocation polynomial (through its start and its stages) at
     /// `1 + cᵢ`, moved into this step's chart — `u` by `log(E₁ᵀ exp(hat u))`, the chart
@@ -1153,7 +1160,7 @@ impl<B: RigidBody + ?Sized, const S: usize> Stepper<B> for LieGauss<S> {
 
     fn reset(&mut self) {
         self.carry.reset();
-        self.newton.w = None;
+        self.newton.forget();
     }
 }
 
@@ -1254,7 +1261,7 @@ impl<L: CoupledLagrangian<N> + ?Sized, const S: usize, const N: usize> Stepper<L
 
     fn reset(&mut self) {
         self.last = None;
-        self.newton.w = None;
+        self.newton.forget();
     }
 }
 
