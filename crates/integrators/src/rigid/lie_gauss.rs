@@ -186,6 +186,12 @@ fn horner(c: &[f64; SERIES_TERMS], t: f64) -> f64 {
 }
 
 impl Coefficients {
+    /// `J_r(u) = 𝟙 − a hat u + b hat u²`, for the `u` these coefficients are of.
+    fn right_jacobian(&self, u: &Vector3<f64>) -> Matrix3<f64> {
+        let uh = hat(u);
+        Matrix3::identity() - uh * self.a + uh * uh * self.b
+    }
+
     /// At `t = θ²`: the Taylor series below `θ = 1` (no cancellation), closed forms above
     /// (their cancellations cost at most a few units in the 14th digit at `θ = 1`).
     fn new(t: f64) -> Self {
@@ -917,7 +923,9 @@ fn solve<M: StageModel<N>, const S: usize, const N: usize>(
         // The transform as J_r(u₁)(Π_k + impulse) − P₁ = 0 (the same equation times J_r(u₁)),
         // whose derivatives in P₀ and the stages are simple.
         let m = pi0 + impulse;
-        let r = dexp_right(&u1) * m - (chart_p0 + dpu);
+        let co1 = Coefficients::new(u1.norm_squared());
+        let jr1 = co1.right_jacobian(&u1);
+        let r = jr1 * m - (chart_p0 + dpu);
         // −G = z₀ + h Σ aᵢⱼ Kⱼ − Zᵢ (z₀ with the current P₀).
         for i in 0..S {
             for c in 0..d {
@@ -938,8 +946,7 @@ fn solve<M: StageModel<N>, const S: usize, const N: usize>(
         let v_u = rows3(&newton.jac, 0, &newton.tmp3);
         let v_p = rows3(&newton.jac, pcol, &newton.tmp3);
         let v_i = rows3(&newton.moment_jac, 0, &newton.tmp3);
-        let dm = jacobian_derivative(&Coefficients::new(u1.norm_squared()), &u1, &m);
-        let jr1 = dexp_right(&u1);
+        let dm = jacobian_derivative(&co1, &u1, &m);
         let Some(schur) = (Matrix3::identity() - dm * w.u + w.p - jr1 * w.impulse).try_inverse()
         else {
             return Err(Failure::Singular);
@@ -1384,9 +1391,7 @@ mod tests {
                 assert!((dm.column(i) - col).amax() < 1e-8, "u = {u:?}, column {i}");
             }
             // The Jacobian the step uses is so3::dexp's.
-            let uh = hat(&u);
-            let jr = Matrix3::identity() - uh * co.a + uh * uh * co.b;
-            assert!((jr - dexp(&u)).amax() < 1e-14);
+            assert!((co.right_jacobian(&u) - dexp(&u)).amax() < 1e-14);
         }
     }
 
