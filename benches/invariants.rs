@@ -17,8 +17,8 @@
 //!
 //! Each conserved quantity must stay within `10 ε √N`, `N` the number of base steps taken (a
 //! random walk of round-off, one rounding pattern per base step: 2²⁰ steps times the
-//! composition's stages, 2²⁰ for a Lie–Gauss method, 2.3e-12 for `lgvi`, 6.8e-12 for the 9 stages of `lgvi6`), and the free
-//! body's energy too; the run fails otherwise. A table of the maxima and the wall time of each
+//! composition's stages, 2²⁰ for a Lie–Gauss method, 2.3e-12 for `lgvi`, 6.8e-12 for the 9
+//! stages of `lgvi6`), and the free body's energy too; the run fails otherwise. A table of the maxima and the wall time of each
 //! run is printed.
 //!
 //! Run: `cargo bench --bench invariants` (all: about a minute on a 2-core machine, most of it

@@ -9,10 +9,10 @@
 //!   time per step (throughput = the run's accepted steps, from `RunSummary::steps`).
 //!   `coriolis-drop` ends at its landing event, so its adaptive runs take fewer steps.
 //!
-//! - `free-hoop-1e-8/<solver>`: the acceptance test of issue 8. On `free-hoop` (default
-//!   parameters, `t_end = 10` s), each solver is run at the cheapest setting that brings the
-//!   error at the final time to `1e-8` or below, and the wall times are compared: the project's
-//!   best method against the best peer-crate DOP853 (`differential-equations`, `ode_solvers`),
+//! - `free-hoop-1e-8/<solver>`: speed at a fixed error against the peer crates. On `free-hoop`
+//!   (default parameters, `t_end = 10` s), each solver is run at the cheapest setting that
+//!   brings the error at the final time to `1e-8` or below, and the wall times are compared: the
+//!   project's best method against the best peer-crate DOP853 (`differential-equations`, `ode_solvers`),
 //!   which integrate exactly the same right-hand side ([`FlatFreeHoop`], 14 dimensions, wrapped
 //!   in their ODE traits; the wrappers only copy the 14 numbers in and out).
 //!
@@ -21,8 +21,8 @@
 //!     integrator `lgvi` and its eighth-order composition `lgvi8`, and the variational
 //!     Lie–Gauss methods `lie-gauss6` … `lie-gauss10` (`n` fixed steps of `t_end / n`). The
 //!     solvers take turns in the timing, so the ratios between them (the variational methods
-//!     against DOP853, say) hold even when the machine's speed drifts. Peers run `t_end` at rtol = atol = tol from the
-//!     flattened initial state, with their default step control.
+//!     against DOP853, say) hold even when the machine's speed drifts. Peers run `t_end` at
+//!     rtol = atol = tol from the flattened initial state, with their default step control.
 //!   * The error is the project's work–precision metric
 //!     ([`tumble_studies::work_precision::state_error`]): `max |yᵢ − yᵢ,ref| / (1 + |yᵢ,ref|)`
 //!     over the coordinates and rates the scene writes (quaternion `qw, qx, qy, qz` compared up

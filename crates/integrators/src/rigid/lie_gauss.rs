@@ -1477,6 +1477,45 @@ mod tests {
         check(&GAUSS10);
     }
 
+    /// The heavy top (`I = (1, 2, 3)`, `m g ℓ = 1.5`) and the start `(R₀, Π₀)` of the
+    /// continuation tests.
+    fn test_top() -> (crate::rigid::problem::HeavyTop, Matrix3<f64>, Vector3<f64>) {
+        use crate::rigid::exact::FreeRigidBody;
+        let body = FreeRigidBody::from_principal_moments(Vector3::new(1.0, 2.0, 3.0)).unwrap();
+        let top =
+            crate::rigid::problem::HeavyTop::new(body, 1.5, Vector3::new(0.1, -0.2, 0.5)).unwrap();
+        let r0 = tumble_kinematics::so3::exp(&Vector3::new(0.3, -0.2, 0.4)).into_inner();
+        (top, r0, Vector3::new(0.3, -1.0, 2.0))
+    }
+
+    /// One step of [`solve`] on a rigid body from `(R, Π)`: the new `(R, Π)` and the step's
+    /// iterations.
+    fn body_step<B: RigidBody, const S: usize>(
+        table: &GaussTableau<S>,
+        newton: &mut Newton<S>,
+        body: &B,
+        (r, pi): (&Matrix3<f64>, &Vector3<f64>),
+        h: f64,
+        reuse: bool,
+    ) -> (Matrix3<f64>, Vector3<f64>, usize) {
+        let none = SVector::<f64, 0>::zeros();
+        let Ok((inc, iterations)) = solve(
+            table,
+            newton,
+            &OnBody(body),
+            r,
+            pi,
+            &none,
+            &none,
+            h,
+            MAX_ITERATIONS,
+            reuse,
+        ) else {
+            panic!("the step at h = {h} did not converge");
+        };
+        (r + r * inc.rotation, pi + inc.momentum, iterations)
+    }
+
     /// A fixed-step run's step lengths `t_{k+1} − t_k` differ in their last bits: such a step
     /// still continues the last one — it keeps the last Newton matrix and starts from the
     /// carried polynomial — and costs exactly what a step of the same length does (iterations and
@@ -1499,39 +1538,16 @@ mod tests {
                 self.0.torque(rotation)
             }
         }
-        let body = FreeRigidBody::from_principal_moments(Vector3::new(1.0, 2.0, 3.0)).unwrap();
-        let top = Counting(
-            HeavyTop::new(body, 1.5, Vector3::new(0.1, -0.2, 0.5)).unwrap(),
-            Cell::new(0),
-        );
-        let none = SVector::<f64, 0>::zeros();
-        let r0 = tumble_kinematics::so3::exp(&Vector3::new(0.3, -0.2, 0.4)).into_inner();
-        let pi0 = Vector3::new(0.3, -1.0, 2.0);
+        let (top, r0, pi0) = test_top();
+        let top = Counting(top, Cell::new(0));
         let h = 0.2;
         // The iterations and the model evaluations of a second step of length `h2` after one
         // of `h`.
         let second = |h2: f64, reuse: bool| {
             let mut newton = Newton::<4>::new(&GAUSS8, 0);
-            let mut step = |r: &Matrix3<f64>, pi: &Vector3<f64>, h: f64, reuse: bool| {
-                let Ok((inc, iterations)) = solve(
-                    &GAUSS8,
-                    &mut newton,
-                    &OnBody(&top),
-                    r,
-                    pi,
-                    &none,
-                    &none,
-                    h,
-                    MAX_ITERATIONS,
-                    reuse,
-                ) else {
-                    panic!("the step did not converge");
-                };
-                (r + r * inc.rotation, pi + inc.momentum, iterations)
-            };
-            let (r1, pi1, _) = step(&r0, &pi0, h, false);
+            let (r1, pi1, _) = body_step(&GAUSS8, &mut newton, &top, (&r0, &pi0), h, false);
             top.1.set(0);
-            let iterations = step(&r1, &pi1, h2, reuse).2;
+            let iterations = body_step(&GAUSS8, &mut newton, &top, (&r1, &pi1), h2, reuse).2;
             (iterations, top.1.get())
         };
         assert!(same_step(h, h * (1.0 + 1e-13)) && !same_step(h, h * 1.01));
@@ -1553,36 +1569,16 @@ mod tests {
     /// halving `h` divides the difference by `2^{S+1}`.
     #[test]
     fn continued_collocation_polynomial_predicts_the_next_stages_to_order_s_plus_one() {
-        use crate::rigid::exact::FreeRigidBody;
         use crate::rigid::problem::HeavyTop;
         fn gap<const S: usize>(table: &GaussTableau<S>, top: &HeavyTop, h: f64) -> f64 {
+            let (_, r0, pi0) = test_top();
             let mut newton = Newton::<S>::new(table, 0);
-            let none = SVector::<f64, 0>::zeros();
-            let r0 = tumble_kinematics::so3::exp(&Vector3::new(0.3, -0.2, 0.4)).into_inner();
-            let pi0 = Vector3::new(0.3, -1.0, 2.0);
-            let step = |newton: &mut Newton<S>, r: &Matrix3<f64>, pi: &Vector3<f64>| {
-                let Ok((inc, _)) = solve(
-                    table,
-                    newton,
-                    &OnBody(top),
-                    r,
-                    pi,
-                    &none,
-                    &none,
-                    h,
-                    MAX_ITERATIONS,
-                    false,
-                ) else {
-                    panic!("the step at h = {h} did not converge");
-                };
-                (r + r * inc.rotation, pi + inc.momentum)
-            };
-            let (r1, pi1) = step(&mut newton, &r0, &pi0);
+            let (r1, pi1, _) = body_step(table, &mut newton, top, (&r0, &pi0), h, false);
             let Some(p0_guess) = newton.predict(h, 3) else {
                 panic!("no prediction after a step");
             };
             let guess = newton.z.clone();
-            let _ = step(&mut newton, &r1, &pi1);
+            let _ = body_step(table, &mut newton, top, (&r1, &pi1), h, false);
             let p0 = Vector3::from_column_slice(&newton.last_origin[3..6]);
             guess
                 .iter()
@@ -1598,8 +1594,7 @@ mod tests {
                 "S = {S}: gaps {coarse:e}, {fine:e}, order {observed}"
             );
         }
-        let body = FreeRigidBody::from_principal_moments(Vector3::new(1.0, 2.0, 3.0)).unwrap();
-        let top = HeavyTop::new(body, 1.5, Vector3::new(0.1, -0.2, 0.5)).unwrap();
+        let (top, _, _) = test_top();
         order(&GAUSS4, &top);
         order(&GAUSS6, &top);
         order(&GAUSS8, &top);
