@@ -14,6 +14,16 @@ import tumble
 LONG = dict(t_end=1e6, dt=0.01, every=10**9)
 
 
+@pytest.fixture(autouse=True)
+def sigint_raises_keyboard_interrupt():
+    """Python's own SIGINT handler for each test. A process that starts with SIGINT ignored (a
+    background job of a non-interactive shell, as some CI runners start their steps) keeps it
+    ignored: the signal would never reach the run, and a 10^8-step run would go on for minutes."""
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+    yield
+    signal.signal(signal.SIGINT, previous)
+
+
 def interrupt_after(seconds):
     timer = threading.Timer(seconds, os.kill, (os.getpid(), signal.SIGINT))
     timer.start()
