@@ -1570,10 +1570,10 @@ mod tests {
     #[test]
     fn continued_collocation_polynomial_predicts_the_next_stages_to_order_s_plus_one() {
         use crate::rigid::problem::HeavyTop;
-        fn gap<const S: usize>(table: &GaussTableau<S>, top: &HeavyTop, h: f64) -> f64 {
-            let (_, r0, pi0) = test_top();
+        type Start = (HeavyTop, Matrix3<f64>, Vector3<f64>);
+        fn gap<const S: usize>(table: &GaussTableau<S>, (top, r0, pi0): &Start, h: f64) -> f64 {
             let mut newton = Newton::<S>::new(table, 0);
-            let (r1, pi1, _) = body_step(table, &mut newton, top, (&r0, &pi0), h, false);
+            let (r1, pi1, _) = body_step(table, &mut newton, top, (r0, pi0), h, false);
             let Some(p0_guess) = newton.predict(h, 3) else {
                 panic!("no prediction after a step");
             };
@@ -1586,17 +1586,17 @@ mod tests {
                 .map(|(a, b)| (a - b).abs())
                 .fold((p0_guess - p0).amax(), f64::max)
         }
-        fn order<const S: usize>(table: &GaussTableau<S>, top: &HeavyTop) {
-            let (coarse, fine) = (gap(table, top, 0.1), gap(table, top, 0.05));
+        fn order<const S: usize>(table: &GaussTableau<S>, start: &Start) {
+            let (coarse, fine) = (gap(table, start, 0.1), gap(table, start, 0.05));
             let observed = (coarse / fine).log2();
             assert!(
                 (observed - (S + 1) as f64).abs() < 0.5,
                 "S = {S}: gaps {coarse:e}, {fine:e}, order {observed}"
             );
         }
-        let (top, _, _) = test_top();
-        order(&GAUSS4, &top);
-        order(&GAUSS6, &top);
-        order(&GAUSS8, &top);
+        let start = test_top();
+        order(&GAUSS4, &start);
+        order(&GAUSS6, &start);
+        order(&GAUSS8, &start);
     }
 }
