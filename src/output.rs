@@ -32,6 +32,23 @@ pub fn check_all<'a>(
     Ok(seen.into_iter().map(|(_, d)| d).collect())
 }
 
+/// Refuses an output that would replace an input file being read (`-o` naming the scene file).
+///
+/// # Errors
+/// If `dest` is a regular-file target that is `input` (after following links).
+pub fn refuse_input(role: &str, dest: &Destination, input: &Path, what: &str) -> Result<()> {
+    if let (Mode::Atomic { target }, Ok(input_file)) = (dest.mode(), std::fs::canonicalize(input))
+        && std::fs::canonicalize(target).unwrap_or_else(|_| target.clone()) == input_file
+    {
+        anyhow::bail!(
+            "{role} {}: the same file as {what} {}; give the output another path",
+            dest.path().display(),
+            input.display()
+        );
+    }
+    Ok(())
+}
+
 /// Writes `bytes` to `path` whole or not at all (streamed if `path` is a device or FIFO).
 ///
 /// # Errors

@@ -63,6 +63,9 @@ const MAX_FRAMES: u64 = 10_000;
 /// Invalid flags (before any step), a scene without a 3D view, a failing run, an unwritable
 /// output.
 pub fn run(args: &Args) -> Result<()> {
+    // SIGINT and SIGTERM stop the simulation at a step and the drawing between frames; the
+    // output is then not written.
+    crate::signals::flag();
     let csv = args.target.scene.to_ascii_lowercase().ends_with(".csv");
     let (scene, params, saved) = if csv {
         if !args.target.set.is_empty() {
@@ -136,14 +139,27 @@ pub fn run(args: &Args) -> Result<()> {
             (saved_rows(&values, &times), columns, integrator)
         }
         None => {
-            let plan = RunOptions {
+            let mut plan = RunOptions {
                 t_end: Some(t_end),
                 at: Some(times),
                 ..RunOptions::default()
             }
             .resolve(info)?;
+            plan.cancel = Some(tumble_scenarios::scene::CancelFlag(crate::signals::flag()));
             let mut rows = Rows::default();
-            scene.simulate(&params, &plan, &mut rows)?;
+            match scene.simulate(&params, &plan, &mut rows) {
+                Err(tumble_scenarios::SceneError::Interrupted { t }) => {
+                    return Err(crate::signals::Interrupted {
+                        code: crate::signals::interrupted().unwrap_or(130),
+                        message: format!(
+                            "the simulation stopped at t = {t}; {} was not written",
+                            args.output.display()
+                        ),
+                    }
+                    .into());
+                }
+                other => other?,
+            };
             (rows.0, info.columns(), plan.integrator().to_string())
         }
     };
@@ -206,6 +222,13 @@ pub fn run(args: &Args) -> Result<()> {
             ])
             .arg(scratch.as_os_str())
             .status()?;
+        if let Some(code) = crate::signals::interrupted() {
+            return Err(crate::signals::Interrupted {
+                code,
+                message: format!("{} was not written", args.output.display()),
+            }
+            .into());
+        }
         if !status.success() {
             bail!("{}: ffmpeg failed ({status})", args.output.display());
         }

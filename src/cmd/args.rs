@@ -52,7 +52,8 @@ pub fn parse_triple(flag: &str, s: &str) -> Result<Vector3<f64>> {
 pub struct FigureArgs {
     /// Figure size: `single` (a 3.4 in journal column) or `double` (7 in), at 300 dpi, the
     /// figure choosing its height for the width; or WxH in inches, cm or mm (`7x4`,
-    /// `180x120mm`). Default: the figure's own size in pixels.
+    /// `180x120mm`). Default: the figure's own size in pixels. At most 16384 pixels a side and
+    /// 25 megapixels at the chosen --dpi.
     #[arg(long = "figure-size", value_name = "single|double|WxH")]
     pub figure_size: Option<String>,
     /// Size of axis labels and legends in points (default 8 pt with --figure-size).

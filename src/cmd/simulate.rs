@@ -288,6 +288,9 @@ fn parse_times(raw: &str) -> Result<Vec<f64>> {
 /// plot or a Parquet file needs them.
 struct CsvRecorder<W: Write> {
     csv: Option<csv::Writer<W>>,
+    /// The header, written with the first row (a run that fails before its first row, such as
+    /// a model refused at t = 0, leaves a stream output empty).
+    header: Option<Vec<String>>,
     keep: Option<Vec<Vec<f64>>>,
     error: Option<csv::Error>,
     /// Stdout was closed by the reader (`| head`): stop quietly.
@@ -296,16 +299,9 @@ struct CsvRecorder<W: Write> {
 
 impl<W: Write> CsvRecorder<W> {
     fn new(out: Option<W>, columns: &[String], keep: bool) -> Result<Self> {
-        let csv = match out {
-            Some(out) => {
-                let mut csv = csv::Writer::from_writer(out);
-                csv.write_record(columns)?;
-                Some(csv)
-            }
-            None => None,
-        };
         Ok(CsvRecorder {
-            csv,
+            header: out.is_some().then(|| columns.to_vec()),
+            csv: out.map(csv::Writer::from_writer),
             keep: keep.then(|| vec![Vec::new(); columns.len()]),
             error: None,
             closed: false,
@@ -327,6 +323,10 @@ impl<W: Write> CsvRecorder<W> {
         if let Some(e) = self.error.take() {
             return Err(e.into());
         }
+        // A run that wrote no row still gives a CSV with its header.
+        if let (Some(csv), Some(header)) = (&mut self.csv, self.header.take()) {
+            csv.write_record(&header)?;
+        }
         if !self.closed
             && let Some(csv) = &mut self.csv
             && let Err(e) = csv.flush()
@@ -343,10 +343,14 @@ impl<W: Write> CsvRecorder<W> {
 
 impl<W: Write> Recorder for CsvRecorder<W> {
     fn row(&mut self, values: &[f64]) -> Flow {
-        if let Some(csv) = &mut self.csv
-            && let Err(e) = csv.serialize(values)
-        {
-            return self.fail(e);
+        if let Some(csv) = &mut self.csv {
+            let written = match self.header.take() {
+                Some(header) => csv.write_record(&header),
+                None => Ok(()),
+            };
+            if let Err(e) = written.and_then(|()| csv.serialize(values)) {
+                return self.fail(e);
+            }
         }
         if let Some(keep) = &mut self.keep {
             for (column, &v) in keep.iter_mut().zip(values) {
@@ -500,6 +504,19 @@ pub fn run(args: &Args) -> Result<()> {
         }
         _ => None,
     };
+    if setup.origin != "builtin" {
+        let scene_file = Path::new(&setup.origin);
+        let outputs = [
+            ("-o", &csv_dest),
+            ("--plot", &plot_dest),
+            ("-o (provenance)", &sidecar),
+        ];
+        for (role, dest) in outputs {
+            if let Some(dest) = dest {
+                output::refuse_input(role, dest, scene_file, "the scene file")?;
+            }
+        }
+    }
     let format = args
         .format
         .unwrap_or_else(|| args.output.as_deref().map_or(Format::Csv, Format::of_path));

@@ -147,7 +147,9 @@ pub fn write_gif(path: &Path, view: &View, title: &str, shots: &[Shot], fps: f64
     );
     let dest = output::Destination::check(path)?;
     let scratch = dest.scratch()?;
-    let written = (|| -> Result<()> {
+    // Whether every frame was written: a signal (when the command installed the handlers)
+    // stops between frames, and the scratch file is then removed unwritten.
+    let written = (|| -> Result<bool> {
         let file = std::io::BufWriter::new(std::fs::File::create(&scratch)?);
         let mut encoder = gif::Encoder::new(file, gw, gh, &[])?;
         encoder.set_repeat(gif::Repeat::Infinite)?;
@@ -156,6 +158,9 @@ pub fn write_gif(path: &Path, view: &View, title: &str, shots: &[Shot], fps: f64
         let big = (w * SUPERSAMPLE, h * SUPERSAMPLE);
         let mut rgb = vec![255u8; big.0 as usize * big.1 as usize * 3];
         for shot in shots {
+            if crate::signals::interrupted().is_some() {
+                return Ok(false);
+            }
             {
                 let root = text::ShapedText::new(BitMapBackend::with_buffer(&mut rgb, big))
                     .into_drawing_area();
@@ -168,9 +173,16 @@ pub fn write_gif(path: &Path, view: &View, title: &str, shots: &[Shot], fps: f64
             frame.delay = delay;
             encoder.write_frame(&frame)?;
         }
-        Ok(())
+        Ok(true)
     })();
-    written.with_context(|| format!("cannot write {}", path.display()))?;
+    if !written.with_context(|| format!("cannot write {}", path.display()))? {
+        let code = crate::signals::interrupted().unwrap_or(130);
+        return Err(crate::signals::Interrupted {
+            code,
+            message: format!("{} was not written", path.display()),
+        }
+        .into());
+    }
     dest.commit_scratch(scratch)?;
     Ok(())
 }

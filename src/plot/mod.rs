@@ -216,6 +216,7 @@ pub fn render<F: Figure + Clone>(
     }
     let size = figure.size();
     let pixels = layout.pixels(size);
+    options::check_pixels(pixels)?;
     match format {
         Format::Png => {
             let k = SUPERSAMPLE;

@@ -95,6 +95,27 @@ pub enum SvgText {
     Paths,
 }
 
+/// The largest raster a figure is drawn into, in device pixels: a side, and the area (a PNG is
+/// drawn supersampled, 27 bytes a pixel, so 25 megapixels take about 700 MB).
+pub const MAX_SIDE_PIXELS: u32 = 16_384;
+/// See [`MAX_SIDE_PIXELS`].
+pub const MAX_PIXELS: f64 = 25e6;
+
+/// Checks a figure's device size against [`MAX_SIDE_PIXELS`] and [`MAX_PIXELS`].
+///
+/// # Errors
+/// A side or an area above the limits, with the size and what to change.
+pub fn check_pixels((w, h): (u32, u32)) -> Result<()> {
+    if w > MAX_SIDE_PIXELS || h > MAX_SIDE_PIXELS || f64::from(w) * f64::from(h) > MAX_PIXELS {
+        bail!(
+            "the figure would be {w} x {h} pixels; figures are limited to {MAX_SIDE_PIXELS} \
+             pixels a side and {} megapixels: use a smaller --figure-size or --dpi",
+            MAX_PIXELS / 1e6
+        );
+    }
+    Ok(())
+}
+
 /// The options of one figure; the default keeps the figure as it is.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct FigureOptions {
@@ -166,12 +187,17 @@ impl FigureOptions {
         {
             bail!("--dpi {dpi}: expected a resolution between 10 and 4800 dots per inch");
         }
+        if self.size.is_none() {
+            // The figures' own sizes are at most this many layout pixels.
+            check_pixels(self.layout().pixels((1000, 700)))?;
+        }
         if let Some(size) = self.size {
             let (w, h) = match self.layout().target {
                 Target::Own => (1000, 700),
                 Target::Width(w) => (w, 700),
                 Target::Size(w, h) => (w, h),
             };
+            check_pixels(self.layout().pixels((w, h)))?;
             if w < 120 || h < 80 {
                 bail!(
                     "--figure-size {}x{} in with {} pt text leaves no room for a plot: use a \
@@ -267,6 +293,33 @@ mod tests {
         };
         let (a, b) = l.inches((w, h));
         assert!((a - 7.0).abs() < 0.01 && (b - 4.0).abs() < 0.01, "{a} {b}");
+    }
+
+    #[test]
+    fn figures_too_large_to_draw_are_refused_before_any_work() {
+        // 200 x 200 in at 300 dpi would be 60000 pixels a side (a 97 GB supersampled buffer).
+        let huge = FigureOptions {
+            size: Some(Size::parse("200x200").unwrap()),
+            ..FigureOptions::default()
+        };
+        let e = huge.validate().unwrap_err().to_string();
+        assert!(e.contains("pixels") && e.contains("--dpi"), "{e}");
+        // The figure's own size at 4800 dpi: 50 device pixels a layout pixel.
+        let dense = FigureOptions {
+            dpi: Some(4800.0),
+            ..FigureOptions::default()
+        };
+        assert!(dense.validate().is_err());
+        // A double-column figure at 600 dpi (4200 x 2400 pixels) is fine.
+        let paper = FigureOptions {
+            size: Some(Size::parse("7x4").unwrap()),
+            dpi: Some(600.0),
+            ..FigureOptions::default()
+        };
+        paper.validate().unwrap();
+        assert!(check_pixels((MAX_SIDE_PIXELS, 1000)).is_ok());
+        assert!(check_pixels((MAX_SIDE_PIXELS + 1, 1000)).is_err());
+        assert!(check_pixels((6000, 6000)).is_err());
     }
 
     #[test]

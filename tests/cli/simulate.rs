@@ -531,8 +531,9 @@ fn bad_output_paths_are_rejected_before_running() {
 
 #[test]
 fn a_run_that_fails_midway_reports_time_and_state_and_leaves_no_file() {
-    // ω = 1e200 makes ω² overflow: the first step produces a non-finite state (the step is far
-    // too coarse for such a rate: allowed here to reach the failure).
+    // ω = 1e150: the initial row is finite (ω² = 1e300), the first step of 0.5 s (far too
+    // coarse for such a rate: allowed here to reach the failure) throws the bead to α ~ 1e298,
+    // whose energy overflows: the run stops at that row, which is not written.
     let err = fails(
         &[],
         &[
@@ -540,7 +541,7 @@ fn a_run_that_fails_midway_reports_time_and_state_and_leaves_no_file() {
             "--allow-coarse-step",
             "driven-hoop",
             "--set",
-            "omega=1e200",
+            "omega=1e150",
             "--integrator",
             "rk4",
             "--dt",
@@ -550,9 +551,26 @@ fn a_run_that_fails_midway_reports_time_and_state_and_leaves_no_file() {
             "--plot",
             "x.png",
         ],
-        &["driven-hoop", "non-finite", "t = 0", "state: alpha = "],
+        &["driven-hoop", "non-finite", "t = 0.5", "energy = inf"],
     );
+    assert!(err.contains("row: t = 0.5, alpha = "), "{err}");
     assert!(err.contains("alpha_dot = "), "{err}");
+    // ω = 1e200 makes ω² overflow in the initial state's energy: refused at t = 0, before a
+    // step.
+    let err = fails(
+        &[],
+        &[
+            "simulate",
+            "--allow-coarse-step",
+            "driven-hoop",
+            "--set",
+            "omega=1e200",
+            "-o",
+            "x.csv",
+        ],
+        &["non-finite output at t = 0:", "energy = -inf"],
+    );
+    assert!(err.contains("row: t = 0, alpha = 0.5"), "{err}");
 }
 
 #[test]

@@ -152,6 +152,23 @@ pub enum SceneError {
     /// The integrator failed (non-convergence, non-finite state), with time and state.
     #[error("integration failed: {0}")]
     Integration(#[from] tumble_integrators::Error),
+    /// A row of output (the state, or a quantity derived from it such as the energy) is not
+    /// finite: the model's numbers overflowed (parameters of an extreme scale) or the state
+    /// blew up. The run stops at that row, which is not handed to the recorder.
+    #[error(
+        "non-finite output at t = {t}: column {column} of the row is {value} (row {row:?}); \
+         the state or a quantity derived from it overflowed (check the parameters' scale)"
+    )]
+    NonFiniteOutput {
+        /// Time of the row.
+        t: f64,
+        /// Index of the first non-finite column (0 is `t`).
+        column: usize,
+        /// Its value.
+        value: f64,
+        /// The whole row.
+        row: Vec<f64>,
+    },
     /// The run was stopped from outside (a signal) at a step boundary before its horizon.
     #[error("interrupted at t = {t}")]
     Interrupted {

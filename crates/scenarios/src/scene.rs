@@ -720,6 +720,9 @@ pub(crate) struct RowObserver<'a, S, F> {
     /// Time of the last row written.
     last_written: f64,
     stopped: bool,
+    /// The first row with a non-finite value, if any: the run stops there with
+    /// [`SceneError::NonFiniteOutput`].
+    non_finite: Option<SceneError>,
     /// Rows evaluated inside steps for [`Recorder::dense_rows`].
     dense_buffer: Vec<f64>,
     recorder: &'a mut dyn Recorder,
@@ -749,6 +752,7 @@ impl<'a, S, F: FnMut(f64, &S, &mut [f64])> RowObserver<'a, S, F> {
             pending: false,
             last_written: f64::NEG_INFINITY,
             stopped: false,
+            non_finite: None,
             dense_buffer: vec![0.0; columns],
             recorder,
             state: std::marker::PhantomData,
@@ -771,6 +775,21 @@ impl<'a, S, F: FnMut(f64, &S, &mut [f64])> RowObserver<'a, S, F> {
         rel
     }
 
+    /// Whether the row in `buffer` is finite; if not, the run stops with the error kept.
+    fn finite(&mut self, t: f64) -> bool {
+        let Some(column) = self.buffer.iter().position(|v| !v.is_finite()) else {
+            return true;
+        };
+        self.non_finite = Some(SceneError::NonFiniteOutput {
+            t,
+            column,
+            value: self.buffer[column],
+            row: self.buffer.clone(),
+        });
+        self.stopped = true;
+        false
+    }
+
     fn write(&mut self, t: f64) -> Flow {
         self.rows += 1;
         self.last_written = t;
@@ -782,25 +801,37 @@ impl<'a, S, F: FnMut(f64, &S, &mut [f64])> RowObserver<'a, S, F> {
     }
 
     /// Writes the final state's row if the cadence skipped it, and returns the run's summary.
-    pub(crate) fn summary(&mut self, outcome: &crate::dispatch::Outcome) -> RunSummary {
+    ///
+    /// # Errors
+    /// [`SceneError::NonFiniteOutput`] if a row was not finite.
+    pub(crate) fn summary(
+        &mut self,
+        outcome: &crate::dispatch::Outcome,
+    ) -> Result<RunSummary, SceneError> {
+        if let Some(e) = self.non_finite.take() {
+            return Err(e);
+        }
         let t = outcome.t;
         if self.pending && !self.stopped && t > self.last_written {
             self.write(t);
         }
-        RunSummary {
+        Ok(RunSummary {
             t,
             steps: outcome.steps,
             evaluations: outcome.evaluations,
             max_energy_rel_err: self.max_rel,
             rows: self.rows,
             terminated: outcome.terminated,
-        }
+        })
     }
 }
 
 impl<S, F: FnMut(f64, &S, &mut [f64])> Observer<S> for RowObserver<'_, S, F> {
     fn observe(&mut self, t: f64, state: &S) -> Flow {
         let rel = self.fill(t, state);
+        if !self.finite(t) {
+            return Flow::Stop;
+        }
         self.max_rel = self.max_rel.max(rel);
         let due = !self.at_times && self.count.is_multiple_of(self.every);
         self.count += 1;
@@ -815,6 +846,9 @@ impl<S, F: FnMut(f64, &S, &mut [f64])> Observer<S> for RowObserver<'_, S, F> {
 
     fn output(&mut self, t: f64, state: &S) -> Flow {
         self.fill(t, state);
+        if !self.finite(t) {
+            return Flow::Stop;
+        }
         self.write(t)
     }
 
@@ -856,7 +890,7 @@ where
     let mut y = y0;
     let mut observer = RowObserver::new(columns, energy_column, plan, row, recorder);
     let outcome = dispatch::run_ode(problem, &mut y, plan, events, &mut observer)?;
-    Ok(observer.summary(&outcome))
+    observer.summary(&outcome)
 }
 
 /// Runs a separable Hamiltonian ([`ProblemKind::Separable`], or [`ProblemKind::Split`] as its
@@ -878,5 +912,5 @@ where
     let mut y = y0;
     let mut observer = RowObserver::new(columns, energy_column, plan, row, recorder);
     let outcome = dispatch::run_separable(model, &mut y, plan, &mut observer)?;
-    Ok(observer.summary(&outcome))
+    observer.summary(&outcome)
 }

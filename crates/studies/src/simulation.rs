@@ -393,6 +393,31 @@ pub fn rate_columns(info: &SceneInfo) -> Vec<String> {
 /// the state has one value for each.
 #[must_use]
 pub fn failure_message(info: &SceneInfo, e: &SceneError) -> String {
+    if let SceneError::NonFiniteOutput {
+        t,
+        column,
+        value,
+        row,
+    } = e
+    {
+        let columns = info.columns();
+        let name = columns.get(*column).map_or("?", String::as_str);
+        let mut msg = format!(
+            "{}: non-finite output at t = {}: {name} = {value}; the state or a quantity derived \
+             from it overflowed (check the parameters' scale)",
+            info.name,
+            number(*t)
+        );
+        if columns.len() == row.len() {
+            let parts: Vec<String> = columns
+                .iter()
+                .zip(row)
+                .map(|(n, v)| format!("{n} = {}", number(*v)))
+                .collect();
+            msg += &format!("\n  row: {}", parts.join(", "));
+        }
+        return msg;
+    }
     let mut msg = format!("{}: {e}", info.name);
     if let Some(state) = failure_state(e) {
         let names: Vec<String> = info

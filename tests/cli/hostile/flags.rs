@@ -1,6 +1,6 @@
 //! Hostile flags: out-of-range, non-finite, malformed and conflicting values.
 
-use super::{Case, run_table};
+use super::{Case, Content, run_table};
 
 pub const CASES: &[Case] = &[
     Case::new("unknown subcommand", &["frobnicate"], 2, &["frobnicate"]),
@@ -467,6 +467,121 @@ pub const CASES: &[Case] = &[
         &["inertia", "x.obj", "--density", "1", "--mass", "2"],
         2,
         &["--mass"],
+    ),
+    Case::new(
+        "figure too large to draw",
+        &[
+            "simulate",
+            "driven-hoop",
+            "--t-end",
+            "0.1",
+            "-o",
+            "s.csv",
+            "--plot",
+            "s.png",
+            "--figure-size",
+            "200x200",
+        ],
+        1,
+        &["60000 x 60000 pixels", "--figure-size"],
+    ),
+    Case::new(
+        "resolution too fine for the figure's own size",
+        &[
+            "simulate",
+            "driven-hoop",
+            "--t-end",
+            "0.1",
+            "--plot",
+            "s.png",
+            "--dpi",
+            "4800",
+        ],
+        1,
+        &["pixels", "--dpi"],
+    ),
+    Case::new(
+        "parameters whose energy overflows",
+        &[
+            "simulate",
+            "driven-hoop",
+            "--set",
+            "a=1e200",
+            "--t-end",
+            "0.05",
+        ],
+        1,
+        &["non-finite output at t = 0", "energy = -inf"],
+    ),
+    Case::new(
+        "output over the scene file read",
+        &["simulate", "dh.toml", "--t-end", "0.1", "-o", "dh.toml"],
+        1,
+        &["-o dh.toml", "the same file as the scene file"],
+    )
+    .files(&[(
+        "dh.toml",
+        Content::Text("scene = \"driven-hoop\"\n[parameters]\nalpha0 = 0.9\n"),
+    )]),
+    Case::new(
+        "hard-cases tolerance above 1",
+        &[
+            "hard-cases",
+            "--cases",
+            "fast-top",
+            "--integrators",
+            "dp5:tol=5",
+            "-o",
+            "atlas",
+        ],
+        1,
+        &["dp5:tol=5", "strictly between 0 and 1"],
+    ),
+    Case::new(
+        "hard-cases tolerance for a fixed-step method",
+        &[
+            "hard-cases",
+            "--cases",
+            "fast-top",
+            "--integrators",
+            "rk4:tol=1e-3",
+            "-o",
+            "atlas",
+        ],
+        1,
+        &["rk4:tol=1e-3", "fixed step"],
+    ),
+    Case::new(
+        "hard-cases step for an adaptive method",
+        &[
+            "hard-cases",
+            "--cases",
+            "fast-top",
+            "--integrators",
+            "dp5:dt=0.01",
+            "-o",
+            "atlas",
+        ],
+        1,
+        &["dp5:dt=0.01", "adaptive"],
+    ),
+    Case::new(
+        "kinematics rates that overflow",
+        &[
+            "kinematics",
+            "--angles",
+            "0.3,0.5,0.7",
+            "--rates",
+            "1e308,1e308,1e308",
+        ],
+        1,
+        &["--rates", "overflows"],
+    ),
+    Case::new(
+        "kinematics angle beyond any fraction of a turn",
+        &["kinematics", "--angles", "1e308,0,0"],
+        1,
+        &["--angles", "modulo 2 pi"],
     ),
 ];
 

@@ -463,7 +463,7 @@ fn run_coupled(
         recorder,
     );
     let outcome = dispatch::run_coupled(model, &mut state, plan, &mut observer)?;
-    Ok(observer.summary(&outcome))
+    observer.summary(&outcome)
 }
 
 impl Scene for FreeHoopScene {

@@ -163,7 +163,7 @@ pub(crate) fn run_rigid<B: RigidBody + Copy>(
     let mut observer = RowObserver::new(columns, ENERGY_COLUMN, plan, row, recorder);
     let mut state = s0;
     let outcome = dispatch::run_rigid_body(&body, free.as_ref(), &mut state, plan, &mut observer)?;
-    Ok(observer.summary(&outcome))
+    observer.summary(&outcome)
 }
 
 /// A torque-free body's kinds of problem, most specific first.

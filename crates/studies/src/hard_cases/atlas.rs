@@ -89,6 +89,26 @@ impl Method {
             }
         };
         let info = registry::find(name).map_err(|e| e.to_string())?;
+        match setting {
+            Some(StepControl::Fixed(_)) if info.properties.adaptive => {
+                return Err(format!(
+                    "`{spec}`: `{}` is adaptive: give it a tolerance, {}:tol=T",
+                    info.name, info.name
+                ));
+            }
+            Some(StepControl::Tolerance(_)) if !info.properties.adaptive => {
+                return Err(format!(
+                    "`{spec}`: `{}` has a fixed step: give it a step, {}:dt=H",
+                    info.name, info.name
+                ));
+            }
+            Some(StepControl::Tolerance(t)) if t >= 1.0 => {
+                return Err(format!(
+                    "`{spec}`: the tolerance must lie strictly between 0 and 1"
+                ));
+            }
+            _ => {}
+        }
         Ok(Method { info, setting })
     }
 

@@ -265,3 +265,23 @@ fn an_atlas_out_of_budget_computes_no_reference_and_journals_nothing() {
     let journal = std::fs::read_to_string(tmp.path().join(atlas::JOURNAL)).unwrap_or_default();
     assert!(journal.lines().count() <= 1, "{journal}");
 }
+
+#[test]
+fn settings_a_method_cannot_take_are_refused_when_parsed() {
+    for (spec, words) in [
+        ("dp5:dt=0.01", "is adaptive"),
+        ("rk4:tol=1e-3", "fixed step"),
+        ("dp5:tol=5", "strictly between 0 and 1"),
+        ("dp5:tol=0", "finite and positive"),
+        ("rk4:dt=-1", "finite and positive"),
+        ("rk4:h=0.1", "neither dt nor tol"),
+    ] {
+        let e = Method::parse(spec).map(|m| m.spec()).unwrap_err();
+        assert!(e.contains(words), "{spec}: {e}");
+    }
+    assert_eq!(
+        Method::parse("dp5:tol=1e-6").unwrap().spec(),
+        "dp5:tol=0.000001"
+    );
+    assert_eq!(Method::parse("rk4:dt=0.01").unwrap().spec(), "rk4:dt=0.01");
+}
