@@ -48,6 +48,36 @@ fn an_interrupted_simulation_leaves_nothing_and_exits_130() {
 }
 
 #[test]
+fn an_interrupted_animation_leaves_nothing_and_exits_130() {
+    let tmp = tempfile::tempdir().unwrap();
+    let args = [
+        "animate",
+        "free-hoop",
+        "--t-end",
+        "100",
+        "--fps",
+        "100",
+        "--duration",
+        "99",
+        "-o",
+        "long.gif",
+    ];
+    // The scratch GIF appears once the frames are being drawn.
+    let (code, err) = interrupt(tmp.path(), &args, || !entries(tmp.path()).is_empty(), "INT");
+    no_panic(code, &err);
+    assert_eq!(code, Some(130), "{err}");
+    assert!(
+        err.contains("interrupted: long.gif was not written"),
+        "{err}"
+    );
+    assert!(
+        entries(tmp.path()).is_empty(),
+        "left behind: {:?}",
+        entries(tmp.path())
+    );
+}
+
+#[test]
 fn a_terminated_sweep_keeps_its_journal_and_resumes_to_the_same_results() {
     let tmp = tempfile::tempdir().unwrap();
     let sweep = r#"
