@@ -389,6 +389,16 @@ pub fn rate_columns(info: &SceneInfo) -> Vec<String> {
     }
 }
 
+/// `name = value, …` for values with one name each.
+fn named(names: &[String], values: &[f64]) -> String {
+    let parts: Vec<String> = names
+        .iter()
+        .zip(values)
+        .map(|(n, v)| format!("{n} = {}", number(*v)))
+        .collect();
+    parts.join(", ")
+}
+
 /// A run failure with the state it carries, named by the scene's coordinates and rates when
 /// the state has one value for each.
 #[must_use]
@@ -409,12 +419,7 @@ pub fn failure_message(info: &SceneInfo, e: &SceneError) -> String {
             number(*t)
         );
         if columns.len() == row.len() {
-            let parts: Vec<String> = columns
-                .iter()
-                .zip(row)
-                .map(|(n, v)| format!("{n} = {}", number(*v)))
-                .collect();
-            msg += &format!("\n  row: {}", parts.join(", "));
+            msg += &format!("\n  row: {}", named(&columns, row));
         }
         return msg;
     }
@@ -427,12 +432,7 @@ pub fn failure_message(info: &SceneInfo, e: &SceneError) -> String {
             .chain(rate_columns(info))
             .collect();
         if names.len() == state.len() {
-            let parts: Vec<String> = names
-                .iter()
-                .zip(state)
-                .map(|(n, v)| format!("{n} = {}", number(*v)))
-                .collect();
-            msg += &format!("\n  state: {}", parts.join(", "));
+            msg += &format!("\n  state: {}", named(&names, state));
         } else {
             let values: Vec<String> = state.iter().map(|v| number(*v)).collect();
             msg += &format!("\n  state: [{}]", values.join(", "));
