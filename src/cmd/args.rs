@@ -25,6 +25,22 @@ pub fn parse_set<'a>(raw: &'a str, example: &str) -> Result<(&'a str, f64)> {
     Ok((key, x))
 }
 
+/// Refuses a key given twice among `--set` flags (`(key, the flag's text)` in command-line
+/// order): the second would silently replace the first.
+///
+/// # Errors
+/// The second flag that repeats a key, naming the first.
+pub fn refuse_repeated_keys<'a>(sets: impl IntoIterator<Item = (&'a str, &'a str)>) -> Result<()> {
+    let mut seen: Vec<(&str, &str)> = Vec::new();
+    for (key, raw) in sets {
+        if let Some((_, first)) = seen.iter().find(|(k, _)| *k == key) {
+            bail!("--set {raw}: `{key}` is already set by --set {first}; give each key once");
+        }
+        seen.push((key, raw));
+    }
+    Ok(())
+}
+
 /// Parses three comma-separated numbers (angle expressions allowed) for the flag `--{flag}`;
 /// every value must be finite.
 pub fn parse_triple(flag: &str, s: &str) -> Result<Vector3<f64>> {

@@ -179,9 +179,8 @@ pub(crate) fn scene_and_parameters(
 /// # Errors
 /// No record beside the CSV, or one that is not JSON.
 pub(crate) fn simulation_record(csv_path: &Path) -> Result<(PathBuf, serde_json::Value)> {
-    let mut record_path = csv_path.as_os_str().to_owned();
-    record_path.push(".json");
-    let record_path = PathBuf::from(record_path);
+    let record_path =
+        crate::output::provenance_path(csv_path, tumble_output::table::Format::of_path(csv_path));
     if !record_path.is_file() {
         bail!(
             "{}: no record {} beside it (simulate -o FILE.csv writes one); a folder of a \

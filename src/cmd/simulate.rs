@@ -26,7 +26,7 @@ use tumble_scenarios::{Params, Recorder, RunPlan, RunSummary, Scene, SceneInfo, 
 use tumble_studies::simulation::{self, Naming, ParamOverride, RunRequest, failure_message};
 pub(crate) use tumble_studies::simulation::{LoadedScene, number};
 
-use super::args::parse_set;
+use super::args::{parse_set, refuse_repeated_keys};
 use crate::manifest;
 use crate::output;
 use crate::plot;
@@ -90,7 +90,9 @@ pub struct Args {
         allow_negative_numbers = true
     )]
     pub energy_warn: f64,
-    /// Refuse a run whose CSV is estimated to be larger than this many bytes (suffixes k, M, G).
+    /// Refuse a run whose CSV is estimated to be larger than this many bytes (suffixes k, M, G);
+    /// an adaptive run, whose rows are not known in advance, stops with an error when its
+    /// output reaches this size.
     #[arg(long = "max-output", value_name = "BYTES", default_value = "10G")]
     pub max_output: String,
     /// Run even when the fixed step turns the initial state's fastest rotation by more than
@@ -122,6 +124,8 @@ struct Setup {
     plan: RunPlan,
     /// The frame a `[body]` scene's rows report, in words (`None`: the scene's own body frame).
     frame: Option<String>,
+    /// `--max-output` in bytes.
+    max_output: f64,
 }
 
 /// A scene and its parameter overrides, as `simulate` and `work-precision` take them.
@@ -156,6 +160,12 @@ pub(crate) fn load_scene(target: &SceneArgs) -> Result<LoadedScene> {
             })
         })
         .collect::<Result<Vec<_>>>()?;
+    refuse_repeated_keys(
+        overrides
+            .iter()
+            .zip(&target.set)
+            .map(|(o, raw)| (o.key.as_str(), raw.as_str())),
+    )?;
     Ok(simulation::load_scene(&target.scene, &overrides)?)
 }
 
@@ -195,6 +205,7 @@ fn setup(args: &Args) -> Result<Setup> {
         params: loaded.params,
         plan,
         frame: loaded.frame,
+        max_output: parse_bytes(&args.max_output)?,
     })
 }
 
@@ -284,10 +295,28 @@ fn parse_times(raw: &str) -> Result<Vec<f64>> {
         .collect()
 }
 
+/// A writer that counts the bytes it passes on.
+struct Counting<W> {
+    inner: W,
+    count: u64,
+}
+
+impl<W: Write> Write for Counting<W> {
+    fn write(&mut self, buf: &[u8]) -> io::Result<usize> {
+        let n = self.inner.write(buf)?;
+        self.count += n as u64;
+        Ok(n)
+    }
+
+    fn flush(&mut self) -> io::Result<()> {
+        self.inner.flush()
+    }
+}
+
 /// Writes rows as CSV (unless the output is Parquet) and keeps them, column by column, when a
 /// plot or a Parquet file needs them.
 struct CsvRecorder<W: Write> {
-    csv: Option<csv::Writer<W>>,
+    csv: Option<csv::Writer<Counting<W>>>,
     /// The header, written with the first row (a run that fails before its first row, such as
     /// a model refused at t = 0, leaves a stream output empty).
     header: Option<Vec<String>>,
@@ -295,16 +324,27 @@ struct CsvRecorder<W: Write> {
     error: Option<csv::Error>,
     /// Stdout was closed by the reader (`| head`): stop quietly.
     closed: bool,
+    /// `--max-output` in bytes: the run stops once the output would pass it (a fixed-step run
+    /// is refused before it starts when its estimate does; an adaptive run's rows are counted
+    /// as they are written).
+    limit: f64,
+    /// Bytes of output so far: written CSV, or about 22 a value for kept rows alone.
+    bytes: f64,
+    /// The time of the row that passed the limit.
+    over_at: Option<f64>,
 }
 
 impl<W: Write> CsvRecorder<W> {
-    fn new(out: Option<W>, columns: &[String], keep: bool) -> Result<Self> {
+    fn new(out: Option<W>, columns: &[String], keep: bool, limit: f64) -> Result<Self> {
         Ok(CsvRecorder {
             header: out.is_some().then(|| columns.to_vec()),
-            csv: out.map(csv::Writer::from_writer),
+            csv: out.map(|inner| csv::Writer::from_writer(Counting { inner, count: 0 })),
             keep: keep.then(|| vec![Vec::new(); columns.len()]),
             error: None,
             closed: false,
+            limit,
+            bytes: 0.0,
+            over_at: None,
         })
     }
 
@@ -343,6 +383,16 @@ impl<W: Write> CsvRecorder<W> {
 
 impl<W: Write> Recorder for CsvRecorder<W> {
     fn row(&mut self, values: &[f64]) -> Flow {
+        // The output's size: the CSV bytes written so far (the writer's buffer aside), or 22
+        // bytes a value when the rows are only kept.
+        self.bytes = match &self.csv {
+            Some(csv) => csv.get_ref().count as f64,
+            None => self.bytes + 22.0 * values.len() as f64,
+        };
+        if self.bytes > self.limit {
+            self.over_at = values.first().copied();
+            return Flow::Stop;
+        }
         if let Some(csv) = &mut self.csv {
             let written = match self.header.take() {
                 Some(header) => csv.write_record(&header),
@@ -446,11 +496,21 @@ struct Outcome {
 /// Runs the scene into `out` (CSV), or only keeps the rows when `out` is `None`.
 fn run_into<W: Write>(setup: &Setup, out: Option<W>, keep: bool) -> Result<Outcome> {
     let info = setup.scene.info();
-    let mut recorder = CsvRecorder::new(out, &info.columns(), keep)?;
+    let mut recorder = CsvRecorder::new(out, &info.columns(), keep, setup.max_output)?;
     let result = setup
         .scene
         .simulate(&setup.params, &setup.plan, &mut recorder);
     let summary = result.map_err(|e| anyhow::anyhow!(failure_message(info, &e)))?;
+    if let Some(t) = recorder.over_at {
+        bail!(
+            "{}: the output reached --max-output ({} bytes) at t = {t} s, before t_end = {} s, \
+             and the run stopped there: write fewer rows (--every N, --output-dt DT, --at) or \
+             raise --max-output",
+            info.name,
+            setup.max_output,
+            setup.plan.t_end,
+        );
+    }
     let (kept, closed) = recorder.finish().context("cannot write the CSV")?;
     Ok(Outcome {
         summary,
@@ -486,12 +546,13 @@ pub fn run(args: &Args) -> Result<()> {
         None => None,
     };
     let plot_dest = destinations.next();
-    // A regular CSV file gets its provenance beside it: FILE.csv.json.
+    let format = args
+        .format
+        .unwrap_or_else(|| args.output.as_deref().map_or(Format::Csv, Format::of_path));
+    // A regular file gets its provenance beside it: FILE.csv.json (output::provenance_path).
     let sidecar = match csv_dest.as_ref().map(output::Destination::mode) {
         Some(output::Mode::Atomic { target }) => {
-            let mut name = target.as_os_str().to_owned();
-            name.push(".json");
-            let path = std::path::PathBuf::from(name);
+            let path = output::provenance_path(target, format);
             let dest = output::Destination::check(&path)
                 .with_context(|| "the provenance file beside -o".to_string())?;
             if plot_dest.as_ref().is_some_and(|p| p.file() == dest.file()) {
@@ -517,9 +578,21 @@ pub fn run(args: &Args) -> Result<()> {
             }
         }
     }
-    let format = args
-        .format
-        .unwrap_or_else(|| args.output.as_deref().map_or(Format::Csv, Format::of_path));
+    // Files that exist now are replaced; the summary says which.
+    let sidecar_name = args
+        .output
+        .as_deref()
+        .map(|o| output::provenance_path(o, format));
+    let replaced: Vec<String> = [
+        (&csv_dest, args.output.as_deref()),
+        (&plot_dest, args.plot.as_deref()),
+        (&sidecar, sidecar_name.as_deref()),
+    ]
+    .into_iter()
+    .filter_map(|(d, name)| Some((d.as_ref()?, name?)))
+    .filter(|(d, _)| output::replaces(d))
+    .map(|(_, name)| name.display().to_string())
+    .collect();
     let parquet = format == Format::Parquet;
     let keep = args.plot.is_some() || parquet;
     let start = Instant::now();
@@ -674,6 +747,9 @@ pub fn run(args: &Args) -> Result<()> {
     );
     if let Some(p) = &args.plot {
         eprintln!("plot         {}", p.display());
+    }
+    if !replaced.is_empty() {
+        eprintln!("replaced     {} (they existed)", replaced.join(", "));
     }
     let seconds = elapsed.as_secs_f64();
     if seconds < 1.0 {

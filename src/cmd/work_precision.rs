@@ -43,7 +43,8 @@ pub struct Args {
     #[arg(short = 'o', long = "output", value_name = "DIR")]
     pub output: Option<PathBuf>,
     /// A ladder stops after a run that took longer than this many seconds; a run still going
-    /// at twice this is cut. Each run of the reference is limited to 60 times this.
+    /// at twice this is cut. Each run of the reference is limited to 60 times this (a reference
+    /// the limit cuts is refused before the study starts), each run of `--long` to 600 times.
     #[arg(long = "max-seconds", value_name = "S", default_value_t = 0.5)]
     pub max_seconds: f64,
     /// Long-run mode: relative energy error against time over `--long-steps` steps.
@@ -70,6 +71,9 @@ pub struct Args {
 /// Each run of the reference is limited to this multiple of `--max-seconds`.
 const REFERENCE_FACTOR: f64 = 60.0;
 
+/// Each run of `--long` is limited to this multiple of `--max-seconds`.
+const LONG_FACTOR: f64 = 600.0;
+
 /// Runs the subcommand.
 ///
 /// # Errors
@@ -88,9 +92,12 @@ pub fn run(args: &Args) -> Result<()> {
     let interruptible = signals::interruptible(scene);
     let scene: &dyn Scene = &interruptible;
     let info = scene.info();
-    for name in &args.integrators {
+    for (k, name) in args.integrators.iter().enumerate() {
         if !info.runs(name) {
             bail!("--integrators: {}", info.unsupported(name));
+        }
+        if args.integrators[..k].contains(name) {
+            bail!("--integrators: `{name}` twice; list each integrator once");
         }
     }
     if !(args.max_seconds.is_finite() && args.max_seconds > 0.0) {
@@ -139,10 +146,8 @@ pub fn run(args: &Args) -> Result<()> {
     output::check_folder(&dir, &folder_files("work-precision"))?;
     let _lock = output::lock_folder(&dir, args.break_lock)?;
 
-    eprintln!(
-        "work-precision  {} ({origin}), t in [0, {t_end}] s",
-        info.name
-    );
+    // The reference first, before any line of the study: a reference the budget cannot afford
+    // makes the error the first line on stderr.
     let reference =
         work_precision::reference_within(scene, &params, t_end, Some(config.max_reference_seconds));
     stop_if_interrupted(&dir)?;
@@ -159,6 +164,10 @@ pub fn run(args: &Args) -> Result<()> {
         ),
         e => anyhow::Error::new(e).context(format!("{}: the reference run failed", info.name)),
     })?;
+    eprintln!(
+        "work-precision  {} ({origin}), t in [0, {t_end}] s",
+        info.name
+    );
     eprintln!("reference       {}", reference.method);
     eprintln!(
         "cross-check     {}: agrees to {:.1e}",
@@ -574,7 +583,15 @@ fn long(
             StepControl::Tolerance(_) => None,
         })
         .fold(h, f64::min);
-    let results = work_precision::long_runs(scene, params, &runs, t_end, first, 240);
+    let results = work_precision::long_runs(
+        scene,
+        params,
+        &runs,
+        t_end,
+        first,
+        240,
+        Some(LONG_FACTOR * args.max_seconds),
+    );
     stop_if_interrupted(dir)?;
     let mut csv = csv::Writer::from_writer(Vec::new());
     csv.write_record(["integrator", "control", "t", "max_energy_rel_err"])?;

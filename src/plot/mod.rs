@@ -322,7 +322,7 @@ mod tests {
                 xy::Panel::new("time (s)", "relative energy error")
                     .with_y_scale(xy::Scale::Log)
                     .with_series(xy::Series::line(
-                        "|E − E₀|/|E₀|",
+                        "|E − E₀|/E_s",
                         t.iter().map(|&t| (t, 1e-15 * (1.0 + t))).collect(),
                     )),
             ],

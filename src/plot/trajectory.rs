@@ -5,7 +5,7 @@
 //! quaternion components, others without a unit), one per kind of rate (rad/s, m/s, the body
 //! angular velocity of a rotation), the hoop's tilt when the run has a `tilt` column that is
 //! not identically zero (a hoop that stays vertical has nothing to show), and, on logarithmic
-//! axes, the relative energy error `|E − E₀|/|E₀|` (`energy_rel_err`) and the error against an
+//! axes, the relative energy error `|E − E₀|/E_s` (`energy_rel_err`) and the error against an
 //! exact solution (`exact_err`) when the run has those columns.
 //!
 //! Scenes name their coordinates and rates but not their units, so the unit is read from the

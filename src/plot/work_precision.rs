@@ -113,7 +113,7 @@ pub fn figure(title: String, subtitle: String, curves: &[Curve]) -> StackedFigur
 pub fn long_figure(title: String, subtitle: String, lines: Vec<Series>) -> StackedFigure {
     let mut panel = Panel::new(
         "time (s)",
-        "relative energy error |E − E₀|/|E₀| (maximum per log-time bin)",
+        "relative energy error |E − E₀|/E_s (maximum per log-time bin)",
     )
     .with_x_scale(Scale::Log)
     .with_y_scale(Scale::Log);

@@ -647,3 +647,107 @@ fn set_overrides_on_a_scene_file_are_validated_too() {
         &["--set m=-0.2", "`m` = -0.2"],
     );
 }
+
+/// The largest relative energy error a run's summary states.
+fn stated_energy_error(err: &str) -> f64 {
+    err.lines()
+        .find_map(|l| l.strip_prefix("energy       max relative error "))
+        .and_then(|v| v.trim().parse().ok())
+        .unwrap_or_else(|| panic!("no energy line in {err}"))
+}
+
+/// Where the energy is zero while its terms are not, the relative energy error is measured
+/// against the energy scale (the kinetic energy plus the potential's amplitude), so that
+/// round-off reads as round-off: a bead released level with the hoop's centre (E₀ = −6e-17 in
+/// floating point), a top released horizontally with no spin (E₀ = 0), a mass dropped from
+/// 1e-300 m (E₀ = 1e-299). Over `|E₀|` they read 1.7, 2.8e2 and 1e277.
+#[test]
+fn zero_energy_runs_report_round_off_not_drift() {
+    let tmp = TempDir::new().unwrap();
+    for (args, bound) in [
+        (
+            &[
+                "simulate",
+                "driven-hoop",
+                "--set",
+                "alpha0=pi/2",
+                "--set",
+                "omega=0",
+                "--t-end",
+                "0.03",
+            ][..],
+            1e-15,
+        ),
+        (
+            &[
+                "simulate",
+                "driven-hoop",
+                "--set",
+                "alpha0=pi/2",
+                "--set",
+                "omega=0",
+                "--t-end",
+                "0.03",
+                "--dt",
+                "1e-4",
+            ][..],
+            1e-15,
+        ),
+        (
+            &[
+                "simulate",
+                "coriolis-drop",
+                "--set",
+                "omega_earth=0",
+                "--set",
+                "h=1e-300",
+            ][..],
+            1e-15,
+        ),
+        // vern9 at its default tolerance 1e-12 over 10 s: the method's own error, far below
+        // the 1e-6 warning.
+        (
+            &[
+                "simulate",
+                "heavy-top",
+                "--set",
+                "tilt0=pi/2",
+                "--set",
+                "spin0=0",
+            ][..],
+            1e-12,
+        ),
+    ] {
+        let out = succeeds(tmp.path(), args);
+        let err = stderr(&out);
+        let e = stated_energy_error(&err);
+        assert!(e < bound, "{args:?}: {e:e}\n{err}");
+        assert!(!err.contains("warning"), "{args:?}: {err}");
+    }
+}
+
+/// `-o results` (no extension) keeps the format's extension in its record's name
+/// (`results.csv.json`): a user's own `results.json` is never touched. Replacing files that
+/// existed is said in the summary.
+#[test]
+fn an_output_without_extension_gets_an_unambiguous_record_and_replacing_is_said() {
+    let tmp = TempDir::new().unwrap();
+    std::fs::write(tmp.path().join("results.json"), "mine").unwrap();
+    let args = ["simulate", "free-body", "--t-end", "0.1", "-o", "results"];
+    let first = succeeds(tmp.path(), &args);
+    assert!(!stderr(&first).contains("replaced"), "{}", stderr(&first));
+    assert_eq!(
+        std::fs::read_to_string(tmp.path().join("results.json")).unwrap(),
+        "mine"
+    );
+    let record = std::fs::read_to_string(tmp.path().join("results.csv.json")).unwrap();
+    assert!(record.contains("\"scene\": \"free-body\""), "{record}");
+    // `tumble plot` finds the record by the same rule.
+    succeeds(tmp.path(), &["plot", "results", "-o", "results.png"]);
+    let again = succeeds(tmp.path(), &args);
+    let err = stderr(&again);
+    assert!(
+        err.contains("replaced     results, results.csv.json (they existed)"),
+        "{err}"
+    );
+}

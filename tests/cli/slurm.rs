@@ -5,6 +5,7 @@
 
 use std::path::Path;
 use std::process::Command;
+use std::time::{Duration, Instant};
 
 use tempfile::TempDir;
 
@@ -346,6 +347,42 @@ fn batch_logs_get_progress_lines_and_stdout_stays_empty() {
     );
     assert_eq!(bad.status.code(), Some(1));
     assert!(!tmp.path().join("r").exists());
+}
+
+/// A short sweep in a batch log (stderr piped, no terminal) exits as soon as its work is done,
+/// a hundred times in a row: with an hour between progress lines, a stop lost by the progress
+/// thread would keep the process (and its folder lock) alive for the whole hour.
+#[test]
+fn a_batch_sweep_never_waits_for_its_progress_period() {
+    let tmp = TempDir::new().unwrap();
+    // Six points on one axis, one metric: the quickest sweep that still writes its figure.
+    let six = "scene = \"free-hoop\"\n[run]\nintegrator = \"gauss8\"\ndt = 0.01\nt_end = 0.05\n\
+               [[axes]]\nparameter = \"omega0\"\nrange = [1.0, 6.0]\ncount = 6\n\
+               [metrics]\nrecord = [\"max_energy_rel_err\"]\n";
+    let file = write(tmp.path(), "six.sweep.toml", six);
+    let mut slowest = Duration::ZERO;
+    for run in 0..100 {
+        let out = format!("r{run}");
+        let begun = Instant::now();
+        succeeds(
+            tmp.path(),
+            &[
+                "sweep",
+                &file,
+                "--progress-every",
+                "3600",
+                "--check",
+                "off",
+                "-o",
+                &out,
+            ],
+        );
+        slowest = slowest.max(begun.elapsed());
+        assert!(tmp.path().join(&out).join("results.csv").exists());
+        assert!(!tmp.path().join(&out).join(".tumble.lock").exists());
+    }
+    // Each run computes six points of 0.05 s; a lost stop would cost 3600 s.
+    assert!(slowest < Duration::from_secs(20), "slowest run {slowest:?}");
 }
 
 #[test]

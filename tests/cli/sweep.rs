@@ -671,3 +671,44 @@ fn the_sweep_file_sets_the_self_check_tolerance_and_the_flag_overrides_it() {
     );
     assert!(!d.join("c").exists());
 }
+
+/// A sweep of many points says how long it will take before it starts, from a short sample:
+/// a line in a batch log as on a terminal. A small one starts without.
+#[test]
+fn a_large_sweep_states_its_estimated_time_before_it_starts() {
+    let tmp = TempDir::new().unwrap();
+    let file = write_sweep(tmp.path(), "big.sweep.toml", &small(0.02, 150));
+    let out = succeeds(
+        tmp.path(),
+        &[
+            "sweep",
+            file.to_str().unwrap(),
+            "--check",
+            "off",
+            "--threads",
+            "2",
+            "-o",
+            "big",
+        ],
+    );
+    let err = stderr(&out);
+    let first = err.lines().next().unwrap_or("");
+    assert!(
+        first.starts_with("estimate     about ")
+            && first.contains(" for 300 points on 2 threads ("),
+        "{err}"
+    );
+    let small_file = write_sweep(tmp.path(), "small.sweep.toml", &small(0.02, 4));
+    let out = succeeds(
+        tmp.path(),
+        &[
+            "sweep",
+            small_file.to_str().unwrap(),
+            "--check",
+            "off",
+            "-o",
+            "s",
+        ],
+    );
+    assert!(!stderr(&out).contains("estimate"), "{}", stderr(&out));
+}

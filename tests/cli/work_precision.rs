@@ -238,6 +238,11 @@ fn max_seconds_bounds_every_run_even_of_a_long_horizon() {
         err.contains("was cut after 1.2 s of wall time") && err.contains("--max-seconds"),
         "{err}"
     );
+    // The error is the first line: no header of a study that never starts.
+    assert!(
+        err.starts_with("error: free-body: the reference run"),
+        "{err}"
+    );
     assert!(
         start.elapsed().as_secs_f64() < 20.0,
         "{:?}",

@@ -187,6 +187,19 @@ pub enum MeshError {
         /// The largest diagonal accepted.
         limit: f64,
     },
+    /// The mesh is so small that its integrals (up to fifth powers of the coordinates)
+    /// underflow.
+    #[error(
+        "mesh is too small: its bounding-box diagonal is {diagonal:e}, below {limit:e}, where \
+         the volume and inertia integrals underflow to zero; give the coordinates in a smaller \
+         unit (and `units` to match)"
+    )]
+    TooSmall {
+        /// The bounding box's diagonal.
+        diagonal: f64,
+        /// The smallest diagonal accepted.
+        limit: f64,
+    },
     /// A face refers to a vertex that does not exist.
     #[error("face {face} refers to vertex {index}, but the mesh has {vertex_count} vertices")]
     VertexIndexOutOfRange {
@@ -304,6 +317,29 @@ pub enum LoadError {
         /// The parser's error.
         #[source]
         source: tobj::LoadError,
+    },
+    /// A binary STL file whose size does not match the triangle count in its header (84
+    /// bytes of header and count, then 50 bytes a triangle).
+    #[error(
+        "{}: not a whole binary STL file: {}, but the file has {size} bytes; it is truncated \
+         or its triangle count is wrong: export it again (or as ASCII STL or OBJ)",
+        path.display(),
+        match count {
+            Some(n) => format!(
+                "its header counts {n} triangles, which take 84 + 50 × {n} = {} bytes",
+                84 + 50 * u64::from(*n)
+            ),
+            None => "a binary STL file has at least 84 bytes (header and triangle count)"
+                .to_string(),
+        }
+    )]
+    BinaryStlSize {
+        /// The file.
+        path: PathBuf,
+        /// The triangle count in the header, if the file is long enough to hold one.
+        count: Option<u32>,
+        /// The file's size in bytes.
+        size: u64,
     },
     /// `stl_io` could not parse the STL file.
     #[error("{}: cannot parse STL", path.display())]

@@ -165,6 +165,17 @@ pub fn parse_stl(
     path: &Path,
     options: &ValidationOptions,
 ) -> Result<TriangleMesh, LoadError> {
+    // Not ASCII (which starts with `solid`): a binary file, whose size its header fixes.
+    if !bytes.starts_with(b"solid") && !looks_like_binary_stl(&bytes) {
+        let count = bytes
+            .get(80..84)
+            .map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]]));
+        return Err(LoadError::BinaryStlSize {
+            path: path.to_owned(),
+            count,
+            size: bytes.len() as u64,
+        });
+    }
     if looks_like_binary_stl(&bytes) && bytes.starts_with(b"solid") {
         // The header is free text that binary readers ignore; blank its first byte so that
         // `stl_io` does not take the file for ASCII.

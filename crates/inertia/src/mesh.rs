@@ -58,6 +58,10 @@ use crate::sum::MomentSums;
 /// coordinates, which overflow beyond about 1e61.
 pub const MAX_DIAGONAL: f64 = 1e60;
 
+/// The smallest bounding-box diagonal of a mesh: below about 1e-61 the fifth powers of the
+/// coordinates underflow (and the degeneracy tests' tolerances with them).
+pub const MIN_DIAGONAL: f64 = 1e-60;
+
 /// How the mass of a solid is given: a uniform density, or the total mass (the density is then
 /// `M / V`).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -136,7 +140,8 @@ impl TriangleMesh {
     /// A validated mesh.
     ///
     /// # Errors
-    /// [`MeshError::TooLarge`] for a bounding-box diagonal above [`MAX_DIAGONAL`];
+    /// [`MeshError::TooLarge`] for a bounding-box diagonal above [`MAX_DIAGONAL`],
+    /// [`MeshError::TooSmall`] below [`MIN_DIAGONAL`];
     /// A [`MeshError`] naming the first problem found (see the [module docs](self));
     /// [`MeshError::InvalidTolerance`] for a negative or non-finite tolerance.
     pub fn try_new_with(
@@ -155,6 +160,12 @@ impl TriangleMesh {
             return Err(MeshError::TooLarge {
                 diagonal,
                 limit: MAX_DIAGONAL,
+            });
+        }
+        if diagonal < MIN_DIAGONAL {
+            return Err(MeshError::TooSmall {
+                diagonal,
+                limit: MIN_DIAGONAL,
             });
         }
         check_face_areas(&vertices, &faces, tolerance * diagonal * diagonal)?;

@@ -46,6 +46,7 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+pub mod abort;
 pub mod table;
 
 use std::fs::{File, OpenOptions};
@@ -454,7 +455,9 @@ fn temp_file_in(path: &Path, dir: &Path) -> io::Result<NamedTempFile> {
         use std::os::unix::fs::PermissionsExt;
         builder.permissions(std::fs::Permissions::from_mode(0o666));
     }
-    builder.tempfile_in(dir)
+    let file = builder.tempfile_in(dir)?;
+    abort::register(file.path());
+    Ok(file)
 }
 
 /// Whether `name` is the name of one of tumble's temporary files (`.NAME.XXXXXX.tmp` or
@@ -608,6 +611,7 @@ impl FolderLock {
                             let _ = std::fs::remove_file(&path);
                             io(e)
                         })?;
+                    abort::register(&path);
                     return Ok(Self { path });
                 }
                 Err(e) if e.kind() == io::ErrorKind::AlreadyExists => {
@@ -655,5 +659,6 @@ impl FolderLock {
 impl Drop for FolderLock {
     fn drop(&mut self) {
         let _ = std::fs::remove_file(&self.path);
+        abort::forget(&self.path);
     }
 }

@@ -11,7 +11,8 @@
 //! * `_dot` puts a dot over the symbol (`phi_dot` → φ̇);
 //! * another `_suffix` is a subscript written `_suffix` (`omega_x` → ω_x, `omega_earth` →
 //!   ω_earth), as are the components of `Lx`, `qw`, … (`L_x`, `q_w`);
-//! * the diagnostics have their own: `energy` → E, `energy_rel_err` → |E − E₀|/|E₀|.
+//! * the diagnostics have their own: `energy` → E, `energy_rel_err` → |E − E₀|/E_s (`E_s` the
+//!   energy scale: the largest of |E₀| and T plus the potential's amplitude so far).
 
 /// Greek letters by name, lower case then upper case.
 const GREEK: [(&str, char, char); 24] = [
@@ -44,7 +45,7 @@ const GREEK: [(&str, char, char); 24] = [
 /// Names whose symbol is not derived from the name.
 const SPECIAL: [(&str, &str); 5] = [
     ("energy", "E"),
-    ("energy_rel_err", "|E − E₀|/|E₀|"),
+    ("energy_rel_err", "|E − E₀|/E_s"),
     ("exact_err", "max(max|ΔR|, |Δm|/|m|)"),
     ("t", "t"),
     ("colatitude", "ϑ"),
@@ -127,7 +128,7 @@ mod tests {
         assert_eq!(symbol("qw"), "q_w");
         assert_eq!(symbol("Omega"), "Ω");
         assert_eq!(symbol("m12"), "m₁₂");
-        assert_eq!(symbol("energy_rel_err"), "|E − E₀|/|E₀|");
+        assert_eq!(symbol("energy_rel_err"), "|E − E₀|/E_s");
         // Names that are no symbol stay as they are.
         for plain in ["M", "a", "g", "h", "x", "tilt", "I1x"] {
             assert!(symbol(plain).starts_with(&plain[..1]), "{plain}");

@@ -546,7 +546,7 @@ pub struct RunSummary {
     pub steps: u64,
     /// Right-hand-side evaluations (or steps of a method without one).
     pub evaluations: u64,
-    /// Largest relative energy error `|E − E₀|/|E₀|` over every step.
+    /// Largest relative energy error `|E − E₀|/E_s` over every step.
     pub max_energy_rel_err: f64,
     /// Rows handed to the recorder.
     pub rows: u64,
@@ -679,6 +679,13 @@ pub trait Scene: Sync {
     fn recommendations(&self) -> &'static [Recommendation] {
         &[]
     }
+
+    /// Columns whose value the scene fixes by construction, whatever its parameters, each
+    /// with the reason (the `tilt` of a hoop held vertical): metrics of them are refused, and
+    /// a sweep's default metrics leave them out. Empty by default.
+    fn fixed_columns(&self) -> &'static [(&'static str, &'static str)] {
+        &[]
+    }
 }
 
 /// The unit quaternion of a rotation matrix with its sign chosen continuous along a run (`q` and
@@ -700,6 +707,21 @@ pub(crate) fn continuous_quaternion(
     q
 }
 
+/// The energy scale after a row: the largest of the scale so far, `|E₀|` and the row's
+/// magnitude (see [`run_vector`]). A NaN magnitude leaves the scale as it was (the row's
+/// non-finite value stops the run anyway).
+#[must_use]
+pub fn energy_scale(scale: f64, e0: f64, magnitude: f64) -> f64 {
+    scale.max(e0.abs()).max(magnitude)
+}
+
+/// `|E − E₀| / scale`, or `|E − E₀|` when the scale is zero (no energy anywhere yet).
+#[must_use]
+pub fn relative_energy_error(e: f64, e0: f64, scale: f64) -> f64 {
+    let change = (e - e0).abs();
+    if scale > 0.0 { change / scale } else { change }
+}
+
 /// Observer that turns states (of any type) into rows, tracks the relative energy error at
 /// every step, and hands rows to the recorder: every `every`-th step, or (when the plan has
 /// output times) at exactly those times, from the method's dense output. The final state is
@@ -709,6 +731,8 @@ pub(crate) struct RowObserver<'a, S, F> {
     buffer: Vec<f64>,
     energy_column: usize,
     energy0: Option<f64>,
+    /// The energy scale: the largest of `|E₀|` and the magnitudes the rows wrote so far.
+    energy_scale: f64,
     max_rel: f64,
     every: u64,
     /// Rows at the plan's output times instead of every `every` steps.
@@ -744,6 +768,7 @@ impl<'a, S, F: FnMut(f64, &S, &mut [f64])> RowObserver<'a, S, F> {
             buffer: vec![0.0; columns],
             energy_column,
             energy0: None,
+            energy_scale: 0.0,
             max_rel: 0.0,
             every: plan.every,
             at_times: plan.times.is_some(),
@@ -759,17 +784,20 @@ impl<'a, S, F: FnMut(f64, &S, &mut [f64])> RowObserver<'a, S, F> {
         }
     }
 
-    /// Fills `buffer` with the row of `(t, state)` and its relative energy error.
+    /// Fills `buffer` with the row of `(t, state)` and its relative energy error: the change
+    /// of the energy since the first row over the energy scale (see [`run_vector`]).
     fn fill(&mut self, t: f64, state: &S) -> f64 {
+        if let Some(slot) = self.buffer.get_mut(self.energy_column + 1) {
+            *slot = 0.0;
+        }
         (self.row)(t, state, &mut self.buffer);
         let e = self.buffer[self.energy_column];
         let e0 = *self.energy0.get_or_insert(e);
-        let rel = if e0 != 0.0 {
-            ((e - e0) / e0).abs()
-        } else {
-            (e - e0).abs()
-        };
-        if let Some(slot) = self.buffer.get_mut(self.energy_column + 1) {
+        let slot = self.buffer.get_mut(self.energy_column + 1);
+        let magnitude = slot.as_deref().copied().unwrap_or(0.0).abs();
+        self.energy_scale = energy_scale(self.energy_scale, e0, magnitude);
+        let rel = relative_energy_error(e, e0, self.energy_scale);
+        if let Some(slot) = slot {
             *slot = rel;
         }
         rel
@@ -871,8 +899,22 @@ impl<S, F: FnMut(f64, &S, &mut [f64])> Observer<S> for RowObserver<'_, S, F> {
 /// output run it; a terminal event ends the run there).
 ///
 /// `row(t, y, out)` writes a row (`t`, coordinates, rates, diagnostics; `out` has `columns`
-/// entries); column `energy_column` must hold the energy, and the one after it receives the
+/// entries); column `energy_column` must hold the energy `E = T + V`, and the one after it
+/// the energy's magnitude at that state (below), which the observer replaces with the
 /// relative energy error.
+///
+/// # The energy scale
+///
+/// `energy_rel_err` is `|E − E₀|` over the energy scale `E_s`: the largest of `|E₀|` and the
+/// magnitudes of the rows so far. A row's magnitude is the kinetic energy `T` plus the
+/// amplitude of the potential's terms: `m g a` for a bead on a hoop of radius `a`, `m g |ρ|`
+/// for a body whose centre of mass is `ρ` from its pivot, `g |z|` and `½|ω × r|²` for a
+/// mass in a rotating frame — the sizes of the terms whose round-off the computed `E`
+/// carries. Where the energy is zero or nearly so while its terms are not (a bead released
+/// level with the hoop's centre, a top released horizontally, a mass dropped from a height of
+/// 1e-300 m), dividing by `|E₀|` alone reports round-off as a drift of order one or more;
+/// over `E_s` it reads as the round-off it is. Where `E₀` dominates its terms the scale is
+/// `|E₀|`, the usual relative error. A row that leaves the magnitude at 0 gets `|E₀|`.
 pub fn run_vector<P, F, const S: usize>(
     problem: &P,
     y0: SVector<f64, S>,

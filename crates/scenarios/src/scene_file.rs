@@ -119,6 +119,19 @@ pub enum SceneFileError {
         /// Where the second of the two is.
         at: Location,
     },
+    /// `[run]` chooses the rows two ways (`every`, `at`, `output_dt`: one of them at most).
+    #[error(
+        "{at}: `run.{second}` and `run.{first}` both choose which rows are written; give one \
+         of them"
+    )]
+    RowsTwoWays {
+        /// Where the second of the two is.
+        at: Location,
+        /// The key written first.
+        first: &'static str,
+        /// The key written second.
+        second: &'static str,
+    },
     /// A `[body]` table that cannot be read or gives no usable body: a mesh that is not a
     /// closed surface, a negative mass, no points, a zero principal moment.
     #[error("{at}: `{key}`: {message}")]
@@ -153,6 +166,7 @@ impl SceneFileError {
             | SceneFileError::NotANumber { at, .. }
             | SceneFileError::InvalidEvery { at, .. }
             | SceneFileError::StepAndTolerance { at }
+            | SceneFileError::RowsTwoWays { at, .. }
             | SceneFileError::Body { at, .. }
             | SceneFileError::BodyNotApplicable { at, .. } => Some(at),
         }
@@ -385,6 +399,24 @@ impl Source<'_> {
                 }
             },
         };
+        // As on the command line, the rows are chosen one way: every n-th step, at given times,
+        // or every output_dt.
+        let mut row_keys: Vec<(&'static str, std::ops::Range<usize>)> = [
+            ("every", run.every.as_ref().map(Spanned::span)),
+            ("at", run.at.as_ref().map(Spanned::span)),
+            ("output_dt", run.output_dt.as_ref().map(Spanned::span)),
+        ]
+        .into_iter()
+        .filter_map(|(k, s)| s.map(|s| (k, s)))
+        .collect();
+        row_keys.sort_by_key(|(_, s)| s.start);
+        if let [(first, _), (second, span), ..] = row_keys.as_slice() {
+            return Err(SceneFileError::RowsTwoWays {
+                at: self.at(span),
+                first,
+                second,
+            });
+        }
         let output_dt = number("output_dt", &run.output_dt)?;
         let at = match &run.at {
             None => None,

@@ -57,7 +57,7 @@ impl fmt::Display for Location {
 #[non_exhaustive]
 pub enum TomlFileError {
     /// The file could not be read.
-    #[error("{}: cannot read the {kind} file", path.display())]
+    #[error("{}: cannot read the {kind} file: {source}", path.display())]
     Read {
         /// `scene` or `sweep`.
         kind: &'static str,
@@ -65,6 +65,26 @@ pub enum TomlFileError {
         path: PathBuf,
         /// The I/O error.
         source: std::io::Error,
+    },
+    /// The file is not UTF-8 text (TOML files are UTF-8).
+    #[error(
+        "{}: the {kind} file is not UTF-8 text: byte 0x{byte:02X} at line {line}, column {column} \
+         (byte offset {offset}); save it as UTF-8",
+        path.display()
+    )]
+    NotUtf8 {
+        /// `scene` or `sweep`.
+        kind: &'static str,
+        /// The path given.
+        path: PathBuf,
+        /// The first byte that is not part of a UTF-8 character.
+        byte: u8,
+        /// Its offset in the file.
+        offset: usize,
+        /// Its line, from 1.
+        line: usize,
+        /// Its column in characters, from 1.
+        column: usize,
     },
     /// Not valid TOML, an unknown key, a duplicate key or a value of the wrong type: the TOML
     /// parser's message (it names the key), followed by the offending line.
@@ -93,7 +113,9 @@ impl TomlFileError {
     pub fn location(&self) -> Option<&Location> {
         match self {
             TomlFileError::Syntax { at, .. } => Some(at),
-            TomlFileError::Read { .. } | TomlFileError::MissingScene { .. } => None,
+            TomlFileError::Read { .. }
+            | TomlFileError::NotUtf8 { .. }
+            | TomlFileError::MissingScene { .. } => None,
         }
     }
 
@@ -114,12 +136,29 @@ impl TomlFileError {
 /// Reads the `kind` file (`scene`, `sweep`) at `path`.
 ///
 /// # Errors
-/// [`TomlFileError::Read`].
+/// [`TomlFileError::Read`] with the system's reason, [`TomlFileError::NotUtf8`] with the place
+/// of the first byte that is not UTF-8.
 pub fn read(path: &Path, kind: &'static str) -> Result<String, TomlFileError> {
-    std::fs::read_to_string(path).map_err(|source| TomlFileError::Read {
+    let bytes = std::fs::read(path).map_err(|source| TomlFileError::Read {
         kind,
         path: path.to_path_buf(),
         source,
+    })?;
+    String::from_utf8(bytes).map_err(|e| {
+        let bytes = e.as_bytes();
+        let offset = e.utf8_error().valid_up_to();
+        // The valid prefix is UTF-8: its lines and characters place the bad byte.
+        let before = std::str::from_utf8(&bytes[..offset]).unwrap_or_default();
+        let line = before.matches('\n').count() + 1;
+        let column = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+        TomlFileError::NotUtf8 {
+            kind,
+            path: path.to_path_buf(),
+            byte: bytes[offset],
+            offset,
+            line,
+            column,
+        }
     })
 }
 

@@ -500,4 +500,8 @@ impl Scene for Interruptible {
     fn recommendations(&self) -> &'static [tumble_scenarios::Recommendation] {
         self.scene.recommendations()
     }
+
+    fn fixed_columns(&self) -> &'static [(&'static str, &'static str)] {
+        self.scene.fixed_columns()
+    }
 }

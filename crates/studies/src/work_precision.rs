@@ -709,7 +709,7 @@ pub fn fitted_slope(rungs: &[Rung], x: impl Fn(&Rung) -> f64, lo: f64, hi: f64) 
 pub struct EnergyHistory {
     /// Upper edge of each bin (s); bin `i` covers `(edges[i-1], edges[i]]`, bin 0 `[0, edges[0]]`.
     pub edges: Vec<f64>,
-    /// Largest `|E − E₀|/|E₀|` in each bin (`NaN` for a bin no step fell in).
+    /// Largest `|E − E₀|/E_s` in each bin (`NaN` for a bin no step fell in).
     pub max_rel_err: Vec<f64>,
     column: usize,
 }
@@ -935,7 +935,9 @@ pub fn matching_step(
 }
 
 /// Runs `runs` (integrator, step or tolerance) over `[0, t_end]` in parallel, each recording
-/// its relative energy error in `bins` logarithmic time bins from `first` on.
+/// its relative energy error in `bins` logarithmic time bins from `first` on; each run is cut
+/// after `seconds` of wall time when given (its result is then
+/// [`tumble_integrators::Error::TimeLimit`]).
 #[must_use]
 pub fn long_runs(
     scene: &dyn Scene,
@@ -944,6 +946,7 @@ pub fn long_runs(
     t_end: f64,
     first: f64,
     bins: usize,
+    seconds: Option<f64>,
 ) -> Vec<LongRun> {
     use rayon::prelude::*;
     let column = scene
@@ -963,6 +966,10 @@ pub fn long_runs(
                 t_end,
                 Observe::EveryStep,
             )
+            .map(|p| match seconds.filter(|s| s.is_finite()) {
+                Some(s) => p.with_deadline(s),
+                None => p,
+            })
             .and_then(|p| scene.simulate(params, &p, &mut history))
             .map_err(|e| e.to_string());
             LongRun {

@@ -22,6 +22,7 @@
 //! (their rows say why); 1 for any error (nothing to run, a folder that holds another
 //! sweep, an unwritable output).
 
+mod estimate;
 mod progress;
 pub mod slurm;
 
@@ -398,6 +399,12 @@ pub fn run(args: &Args) -> Result<()> {
         .iter()
         .map(|s| parse_override(s))
         .collect::<Result<Vec<_>>>()?;
+    super::args::refuse_repeated_keys(
+        overrides
+            .iter()
+            .zip(&args.set)
+            .map(|(o, raw)| (o.key.as_str(), raw.as_str())),
+    )?;
     if let Some(levels) = args.refine {
         if levels < 0 {
             bail!("--refine {levels}: expected a whole number of levels, 0 (none) or more");
@@ -436,7 +443,12 @@ pub fn run(args: &Args) -> Result<()> {
     let check = CheckSettings::parse(&args.check, args.check_tolerance, threads)?;
     let _lock = output::lock_folder(&dir, args.break_lock)?;
 
-    // Stage two: the points.
+    // Stage two: the points (a large sweep first says how long it will take).
+    let mut interruptible = def.clone();
+    interruptible.plan.cancel = Some(tumble_scenarios::scene::CancelFlag(signals::flag()));
+    if let Some(e) = estimate::estimate(&interruptible, shard, threads) {
+        eprintln!("{}", estimate::line(&e, threads));
+    }
     let reporter = progress::Reporter::new(every);
     let mut on_progress = |p: &Progress| reporter.update(p);
     let config = RunConfig {
@@ -447,8 +459,6 @@ pub fn run(args: &Args) -> Result<()> {
     };
     // A signal also stops the points under way at their next step; the engine journals none
     // of the points it cut, so --resume computes them again.
-    let mut interruptible = def.clone();
-    interruptible.plan.cancel = Some(tumble_scenarios::scene::CancelFlag(signals::flag()));
     let report = quiet_point_panics(|| sweep::run(&interruptible, &dir, &config, &mut on_progress));
     reporter.finish();
     let report = report?;

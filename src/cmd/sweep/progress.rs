@@ -101,26 +101,9 @@ impl Lines {
         let thread = std::thread::Builder::new()
             .name("tumble-progress".into())
             .spawn(move || {
-                let (lock, wake) = &*theirs;
-                let Ok(mut state) = lock.lock() else { return };
-                let mut next = started + every;
-                loop {
-                    let now = Instant::now();
-                    if now < next {
-                        match wake.wait_timeout(state, next - now) {
-                            Ok((s, _)) => state = s,
-                            Err(_) => return,
-                        }
-                        if state.stop {
-                            return;
-                        }
-                        continue;
-                    }
-                    next += every;
-                    if let Some(p) = state.progress {
-                        eprintln!("{}", line(&p, started.elapsed()));
-                    }
-                }
+                timer_loop(&theirs, started, every, |p, elapsed| {
+                    eprintln!("{}", line(p, elapsed));
+                });
             })
             .ok();
         Lines { shared, thread }
@@ -139,6 +122,38 @@ impl Lines {
         self.shared.1.notify_all();
         if let Some(t) = self.thread.take() {
             let _ = t.join();
+        }
+    }
+}
+
+/// The timer thread's loop: a line every `every` until `stop`. The flag is read under the lock
+/// before every wait, so a stop signalled before this thread first takes the lock (or between
+/// two waits) is seen at once rather than after a whole period: `stop` sets the flag under the
+/// same lock, and the thread only waits while holding it and seeing the flag unset.
+fn timer_loop(
+    shared: &(Mutex<State>, Condvar),
+    started: Instant,
+    every: Duration,
+    mut emit: impl FnMut(&Progress, Duration),
+) {
+    let (lock, wake) = shared;
+    let Ok(mut state) = lock.lock() else { return };
+    let mut next = started + every;
+    loop {
+        if state.stop {
+            return;
+        }
+        let now = Instant::now();
+        if now < next {
+            match wake.wait_timeout(state, next - now) {
+                Ok((s, _)) => state = s,
+                Err(_) => return,
+            }
+            continue;
+        }
+        next += every;
+        if let Some(p) = state.progress {
+            emit(&p, started.elapsed());
         }
     }
 }
@@ -174,7 +189,7 @@ fn line(p: &Progress, elapsed: Duration) -> String {
 }
 
 /// Seconds as `42 s`, `3 min 20 s`, `2 h 05 min`.
-fn duration(s: f64) -> String {
+pub(super) fn duration(s: f64) -> String {
     let s = s.round().min(1e12) as u64;
     if s < 60 {
         format!("{s} s")
@@ -210,5 +225,42 @@ mod tests {
         };
         assert!(line(&start, Duration::ZERO).ends_with("ETA unknown"));
         assert_eq!(duration(7325.0), "2 h 02 min");
+    }
+
+    /// A stop signalled before the timer thread first waits is seen at once: the loop, run on
+    /// this thread with the flag already set and a period of an hour, returns without emitting.
+    #[test]
+    fn a_stop_before_the_first_wait_is_not_lost() {
+        let shared = (
+            Mutex::new(State {
+                progress: None,
+                stop: true,
+            }),
+            Condvar::new(),
+        );
+        let mut lines = 0;
+        let begun = Instant::now();
+        timer_loop(&shared, begun, Duration::from_secs(3600), |_, _| lines += 1);
+        assert_eq!(lines, 0);
+        assert!(begun.elapsed() < Duration::from_secs(60));
+    }
+
+    /// `stop` right after `start`, whichever of the two threads takes the lock first, returns
+    /// long before the hour-long period (the race the flag check before each wait closes),
+    /// two hundred times in a row.
+    #[test]
+    fn stopping_at_once_never_waits_for_the_period() {
+        for _ in 0..200 {
+            let begun = Instant::now();
+            let lines = Lines::start(Duration::from_secs(3600));
+            lines.update(&Progress {
+                total: 1,
+                finished: 1,
+                resumed: 0,
+                failed: 0,
+            });
+            lines.stop();
+            assert!(begun.elapsed() < Duration::from_secs(60));
+        }
     }
 }

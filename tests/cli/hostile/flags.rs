@@ -583,6 +583,72 @@ pub const CASES: &[Case] = &[
         1,
         &["--angles", "modulo 2 pi"],
     ),
+    Case::new(
+        "the same --set twice",
+        &["simulate", "free-body", "--set", "m1=1", "--set", "m1=2"],
+        1,
+        &["--set m1=2", "already set by --set m1=1"],
+    ),
+    Case::new(
+        "an integrator listed twice",
+        &[
+            "work-precision",
+            "free-body",
+            "--integrators",
+            "gauss8,gauss8",
+            "-o",
+            "wp",
+        ],
+        1,
+        &["gauss8", "twice"],
+    ),
+    // An adaptive run's rows are not known before it runs: it stops at --max-output, and the
+    // file is not written.
+    Case::new(
+        "an adaptive run past --max-output",
+        &[
+            "simulate",
+            "free-body",
+            "--integrator",
+            "dop853",
+            "--tol",
+            "1e-13",
+            "--t-end",
+            "1000",
+            "--max-output",
+            "20k",
+            "-o",
+            "big.csv",
+        ],
+        1,
+        &["reached --max-output", "t_end = 1000 s", "--every"],
+    ),
+    Case::new(
+        "a driven hoop's tilt as a metric",
+        &["sweep", "s.sweep.toml", "-o", "out", "--check", "off"],
+        1,
+        &["max_tilt", "0 by construction"],
+    )
+    .files(&[(
+        "s.sweep.toml",
+        Content::Text(
+            "scene = \"driven-hoop\"\n[[axes]]\nparameter = \"omega\"\nrange = [1.0, 9.0]\n\
+             count = 4\n[metrics]\nrecord = [\"max_tilt\"]\n",
+        ),
+    )]),
+    Case::new(
+        "a hard-case file with a bad angle",
+        &["hard-cases", "--case-file", "c.toml", "-o", "atlas"],
+        1,
+        &["c.toml", "parameters.tilt0", "pi/x"],
+    )
+    .files(&[(
+        "c.toml",
+        Content::Text(
+            "name = \"bad-angle\"\nscene = \"heavy-top\"\nwhy = \"w\"\ngood = \"g\"\n\
+             [parameters]\ntilt0 = \"pi/x\"\n[run]\nt_end = 1.0\n[property]\nerror = 1e-6\n",
+        ),
+    )]),
 ];
 
 #[test]

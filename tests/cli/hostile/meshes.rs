@@ -30,6 +30,15 @@ fn stl_lying_count() -> Vec<u8> {
     )
 }
 
+/// A closed tetrahedron (four triangles) whose header counts five.
+fn stl_wrong_count() -> Vec<u8> {
+    let a = [0.0, 0.0, 0.0];
+    let b = [1.0, 0.0, 0.0];
+    let c = [0.0, 1.0, 0.0];
+    let d = [0.0, 0.0, 1.0];
+    binary_stl(5, &[[a, c, b], [a, b, d], [a, d, c], [b, c, d]])
+}
+
 fn stl_nan() -> Vec<u8> {
     let a = [0.0, 0.0, 0.0];
     let b = [1.0, 0.0, 0.0];
@@ -111,6 +120,21 @@ pub const CASES: &[Case] = &[
     obj_case!("OBJ negative index beyond the start", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf -1 -2 -9\n", "OBJ"),
     Case::new("ASCII STL with a NaN vertex", &["inertia", "m.stl"], 1, &["m.stl"])
         .files(&[("m.stl", Text("solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 nan\nvertex 0 1 0\nendloop\nendfacet\nendsolid x\n"))]),
+    // The size a binary STL's header implies, against the file's: said in bytes.
+    Case::new(
+        "STL binary with a wrong triangle count",
+        &["inertia", "m.stl"],
+        1,
+        &["m.stl", "not a whole binary STL file", "counts 5 triangles", "334 bytes", "234 bytes"],
+    )
+    .files(&[("m.stl", Made(stl_wrong_count))]),
+    Case::new(
+        "mesh too small for its integrals",
+        &["inertia", "m.obj"],
+        1,
+        &["m.obj", "mesh is too small", "smaller unit"],
+    )
+    .files(&[("m.obj", Text("v 0 0 0\nv 1e-70 0 0\nv 0 1e-70 0\nv 0 0 1e-70\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n"))]),
 ];
 
 #[test]

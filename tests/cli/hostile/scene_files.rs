@@ -165,6 +165,32 @@ pub const CASES: &[Case] = &[
         &["d.toml"],
     )
     .files(&[("d.toml/inner", Text(""))]),
+    // Not UTF-8: the byte, its line and column.
+    Case::new(
+        "scene file not UTF-8",
+        SIM,
+        1,
+        &[
+            "s.toml",
+            "not UTF-8 text",
+            "byte 0xE9 at line 2, column 6",
+            "save it as UTF-8",
+        ],
+    )
+    .files(&[("s.toml", Bytes(b"scene = \"free-body\"\n# caf\xe9\n"))]),
+    // A [body] with no initial angular velocity: the parameters the user writes are named.
+    scene_case!(
+        "body scene file without an angular velocity",
+        "scene = \"free-body\"\n[[body.shape]]\nshape = \"box:1,2,3\"\nmass = 1.0\n",
+        "omega_x0, omega_y0, omega_z0",
+        "omega_z0 = 1.0"
+    ),
+    scene_case!(
+        "run every and at together",
+        "scene = \"free-body\"\n[run]\nevery = 2\nat = [0.05]\n",
+        "s.toml:4",
+        "`run.at` and `run.every` both choose which rows"
+    ),
 ];
 
 #[test]

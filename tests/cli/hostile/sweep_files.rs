@@ -166,6 +166,14 @@ pub const CASES: &[Case] = &[
         1,
         &["axes.omega0.values"],
     ),
+    sweep_case!(
+        "sweep value listed twice",
+        "scene = \"free-hoop\"\n[run]\nt_end = 0.1\n[[axes]]\nparameter = \"omega0\"\n\
+         values = [1.0, 2.0, 1.0]\n",
+        "s.sweep.toml:6",
+        "listed twice",
+        "values 1 and 3"
+    ),
     Case::new(
         "output folder is a file",
         &["sweep", "-o", "taken"],

@@ -259,7 +259,13 @@ impl Scene for BodyScene {
             return run_rigid(info, top, None, s0, None, *q.matrix(), plan, recorder);
         }
         let (body, q, s0) = Self::free_body_and_state(params)?;
-        check_momentum(info.name, &s0.momentum)?;
+        check_momentum(
+            info.name,
+            "omega_x0, omega_y0, omega_z0",
+            "must not all be zero (the body must rotate): give the body's initial angular \
+             velocity under [parameters], e.g. `omega_z0 = 1.0`",
+            &s0.momentum,
+        )?;
         let r0 = Rotation3::from_matrix_unchecked(s0.rotation);
         let exact = body.flow(&r0, &s0.momentum)?;
         run_rigid(

@@ -50,6 +50,13 @@ impl CoriolisDrop {
     pub fn jacobi_integral(&self, r: &Vector3<f64>, v: &Vector3<f64>) -> f64 {
         0.5 * v.norm_squared() + self.g * r.z - 0.5 * self.omega.cross(r).norm_squared()
     }
+
+    /// The magnitude of the Jacobi integral's terms, `½|v|² + g|z| + ½|ω × r|²` (the energy
+    /// scale of [`crate::scene::run_vector`]).
+    #[must_use]
+    pub fn jacobi_magnitude(&self, r: &Vector3<f64>, v: &Vector3<f64>) -> f64 {
+        0.5 * v.norm_squared() + (self.g * r.z).abs() + 0.5 * self.omega.cross(r).norm_squared()
+    }
 }
 
 impl Lagrangian<3> for CoriolisDrop {
@@ -188,6 +195,7 @@ impl Scene for CoriolisDropScene {
                 let r = Vector3::new(y[0], y[1], y[2]);
                 let v = Vector3::new(y[3], y[4], y[5]);
                 out[7] = model.jacobi_integral(&r, &v);
+                out[8] = model.jacobi_magnitude(&r, &v);
             },
             &mut events,
             recorder,

@@ -272,6 +272,9 @@ fn write_row(
         .unwrap_or((Vector3::repeat(f64::NAN), SVector::<f64, 1>::new(f64::NAN)));
     let l = s.spatial_momentum();
     let energy = coupled_energy(model, s).unwrap_or(f64::NAN);
+    // The energy scale's magnitude: T = ½(ω·m + α̇ p_α) plus the potential's amplitude m g a.
+    let magnitude = 0.5 * (omega.dot(&s.momentum) + qdot.dot(&s.p)).abs()
+        + model.hoop.bead_mass * model.hoop.gravity * model.hoop.radius;
     let values = [
         t,
         q.w,
@@ -284,7 +287,7 @@ fn write_row(
         omega.z,
         qdot[0],
         energy,
-        0.0,
+        magnitude,
         l.x,
         l.y,
         l.z,

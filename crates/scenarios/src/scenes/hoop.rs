@@ -211,6 +211,19 @@ impl DrivenHoop {
             - 0.5 * p.diameter_moment() * self.omega * self.omega
     }
 
+    /// The magnitude of [`Self::energy`]: its kinetic term plus the amplitudes of its
+    /// potential terms, `m a² (½α̇² + ½ω² + g/a) + ½ (M a²/2) ω²` (the energy scale of
+    /// [`crate::scene::run_vector`]: `E` carries the round-off of `cos α` times `m g a`
+    /// whatever `cos α` is).
+    #[must_use]
+    pub fn energy_magnitude(&self, alpha_dot: f64) -> f64 {
+        let p = &self.hoop;
+        let w2 = self.omega * self.omega;
+        p.bead_mass * p.radius * p.radius * (0.5 * alpha_dot * alpha_dot + 0.5 * w2)
+            + p.bead_mass * p.gravity * p.radius
+            + 0.5 * p.diameter_moment() * w2
+    }
+
     /// The off-axis equilibrium `α* = acos(g/(aω²))`, when `ω² > g/a`.
     #[must_use]
     pub fn off_axis_equilibrium(&self) -> Option<f64> {
@@ -283,6 +296,17 @@ impl SpinningHoop {
     #[must_use]
     pub fn angular_momentum_z(&self, alpha: f64, phi_dot: f64) -> f64 {
         self.axial_moment(alpha) * phi_dot
+    }
+
+    /// The magnitude of [`Self::energy`]: the kinetic energy plus the potential's amplitude,
+    /// `½ I_z(α) φ̇² + ½ m a² α̇² + m g a` (the energy scale of
+    /// [`crate::scene::run_vector`]).
+    #[must_use]
+    pub fn energy_magnitude(&self, alpha: f64, phi_dot: f64, alpha_dot: f64) -> f64 {
+        let p = &self.hoop;
+        0.5 * self.axial_moment(alpha) * phi_dot * phi_dot
+            + 0.5 * p.bead_mass * p.radius * p.radius * alpha_dot * alpha_dot
+            + p.bead_mass * p.gravity * p.radius
     }
 
     /// Energy `½ I_z(α) φ̇² + ½ m a² α̇² − m g a cos α`.
@@ -574,6 +598,13 @@ static DRIVEN_HOOP_RECOMMENDED: [Recommendation; 3] = [
 pub struct DrivenHoopScene;
 
 impl Scene for DrivenHoopScene {
+    fn fixed_columns(&self) -> &'static [(&'static str, &'static str)] {
+        &[(
+            "tilt",
+            "the hoop stands vertical, so its tilt is 0 by construction",
+        )]
+    }
+
     fn info(&self) -> &'static SceneInfo {
         &DRIVEN_HOOP
     }
@@ -604,6 +635,7 @@ impl Scene for DrivenHoopScene {
             out[1] = y[0];
             out[2] = y[1];
             out[3] = scene.energy(y[0], y[1]);
+            out[4] = scene.energy_magnitude(y[1]);
             out[5] = l.x;
             out[6] = l.y;
             out[7] = l.z;
@@ -721,6 +753,13 @@ pub(crate) fn critical_spin_guide(w: f64) -> Guide {
 pub struct SpinningHoopScene;
 
 impl Scene for SpinningHoopScene {
+    fn fixed_columns(&self) -> &'static [(&'static str, &'static str)] {
+        &[(
+            "tilt",
+            "the hoop stands vertical, so its tilt is 0 by construction",
+        )]
+    }
+
     fn info(&self) -> &'static SceneInfo {
         &SPINNING_HOOP
     }
@@ -756,6 +795,7 @@ impl Scene for SpinningHoopScene {
             let l = hoop_angular_momentum(&scene.hoop, &angles, &rates, y[1], y[3]);
             out[..5].copy_from_slice(&[t, y[0], y[1], y[2], y[3]]);
             out[5] = scene.energy(y[1], y[2], y[3]);
+            out[6] = scene.energy_magnitude(y[1], y[2], y[3]);
             out[7] = l.x;
             out[8] = l.y;
             out[9] = l.z;

@@ -83,7 +83,18 @@ impl<B: RigidBody> Ode<Flat> for FlatRigidBody<B> {
     }
 }
 
-/// Writes a row: t, quaternion, body ω, energy, (relative error slot), L, and the distance from
+/// The magnitude of a rigid body's energy: `T` plus the potential's amplitude
+/// `√(V² + |M|²)`, which for a potential linear in `R`, `V = w (Rᵀe₃)·ρ` (gravity on a body
+/// turning about a fixed point), is `w |ρ|` at every orientation (`|V|² + |M|² =
+/// w² ((u·ρ)² + |u × ρ|²)`, `u = Rᵀe₃` a unit vector). The energy scale of
+/// [`crate::scene::run_vector`].
+fn energy_magnitude<B: RigidBody>(body: &B, s: &RigidBodyState) -> f64 {
+    let v = body.potential(&s.rotation);
+    body.body().energy(&s.momentum).abs() + v.hypot(body.torque(&s.rotation).norm())
+}
+
+/// Writes a row: t, quaternion, body ω, energy, its magnitude `|T| + |V|` (the relative error
+/// slot, see [`crate::scene::run_vector`]), L, and the distance from
 /// the exact solution when one is given.
 ///
 /// `frame` maps the model's body frame to the frame the rows are reported in (the columns of
@@ -113,7 +124,7 @@ fn write_row<B: RigidBody>(
         omega.y,
         omega.z,
         body.hamiltonian(s),
-        0.0,
+        energy_magnitude(body, s),
         l.x,
         l.y,
         l.z,
@@ -331,15 +342,22 @@ pub(crate) fn intermediate_of(
     }
 }
 
-pub(crate) fn check_momentum(scene: &str, m: &Vector3<f64>) -> Result<(), SceneError> {
+/// Refuses a body that does not rotate: `names` are the parameters that set its initial
+/// angular momentum (or velocity), as the user writes them.
+pub(crate) fn check_momentum(
+    scene: &str,
+    names: &str,
+    requirement: &'static str,
+    m: &Vector3<f64>,
+) -> Result<(), SceneError> {
     if m.norm() > 0.0 {
         Ok(())
     } else {
         Err(SceneError::InvalidParameter {
             scene: scene.to_string(),
-            name: "m1, m2, m3".into(),
+            name: names.into(),
             value: 0.0,
-            requirement: "must not all be zero (the body must rotate)",
+            requirement,
         })
     }
 }
@@ -378,7 +396,12 @@ impl Scene for FreeBodyScene {
         let moments = Vector3::new(params.get("I1")?, params.get("I2")?, params.get("I3")?);
         let body = inertia_body(moments)?;
         let m0 = Vector3::new(params.get("m1")?, params.get("m2")?, params.get("m3")?);
-        check_momentum(info.name, &m0)?;
+        check_momentum(
+            info.name,
+            "m1, m2, m3",
+            "must not all be zero (the body must rotate): give one of them, e.g. --set m3=1",
+            &m0,
+        )?;
         let r0 = Rotation3::identity();
         let exact = body.flow(&r0, &m0)?;
         let s0 = RigidBodyState::new(&r0, m0);
@@ -520,7 +543,12 @@ impl Scene for DzhanibekovScene {
     ) -> Result<RunSummary, SceneError> {
         let info = self.info();
         let (body, s0) = Self::body_and_state(params)?;
-        check_momentum(info.name, &s0.momentum)?;
+        check_momentum(
+            info.name,
+            "spin",
+            "must not be zero (the body must rotate)",
+            &s0.momentum,
+        )?;
         let exact = body.flow(&Rotation3::identity(), &s0.momentum)?;
         run_rigid(
             info,

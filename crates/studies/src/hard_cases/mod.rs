@@ -10,7 +10,7 @@
 //! why = "..."                      # why it is hard
 //! good = "..."                     # what a good method does
 //!
-//! [parameters]                     # the case; the rest keep the scene's defaults
+//! [parameters]                     # the case (numbers or angles: `pi/3`); the rest keep the scene's defaults
 //! perturbation = 1e-9
 //!
 //! [run]
@@ -177,9 +177,9 @@ struct RawCase {
     scene: String,
     why: String,
     good: String,
-    parameters: Option<BTreeMap<String, f64>>,
+    parameters: Option<BTreeMap<String, toml::Value>>,
     run: RawRun,
-    easy: Option<BTreeMap<String, f64>>,
+    easy: Option<BTreeMap<String, toml::Value>>,
     property: RawProperty,
 }
 
@@ -262,11 +262,17 @@ impl Case {
         }
         let scene = scenes::find(&raw.scene).map_err(|e| invalid("scene", e.to_string()))?;
         let info = scene.info();
-        let set = |table: &str, values: &BTreeMap<String, f64>, params: &mut Params| {
-            for (name, &value) in values {
+        // Numbers or angle expressions (`pi/3`, `60 deg`), as in scene files.
+        let number = |table: &str, name: &str, value: &toml::Value| {
+            toml_file::number_or_angle(value)
+                .map_err(|found| invalid(&format!("{table}.{name}"), format!("found {found}")))
+        };
+        let set = |table: &str, values: &BTreeMap<String, toml::Value>, params: &mut Params| {
+            for (name, value) in values {
                 if table == "easy" && name == "t_end" {
                     continue;
                 }
+                let value = number(table, name, value)?;
                 params
                     .set(name, value)
                     .map_err(|e: SceneError| invalid(&format!("{table}.{name}"), e.to_string()))?;
@@ -289,7 +295,7 @@ impl Case {
         };
         let t_end = horizon("run.t_end", raw.run.t_end)?;
         let easy_t_end = match easy_table.get("t_end") {
-            Some(&t) => horizon("easy.t_end", t)?,
+            Some(t) => horizon("easy.t_end", number("easy", "t_end", t)?)?,
             None => t_end,
         };
         let bound = |key: &str, v: Option<f64>| match v {

@@ -761,9 +761,21 @@ impl Draft {
                     });
                 }
                 let mut list = Vec::with_capacity(v.value.len());
-                for item in &v.value {
+                for (k, item) in v.value.iter().enumerate() {
                     let x = item.float(&key("values"))?;
                     check(x, &item.at, "values")?;
+                    // A repeated value would compute the same points twice under two indices.
+                    if let Some(first) = list.iter().position(|&y| y == x) {
+                        return Err(SweepFileError::Invalid {
+                            at: item.at.clone(),
+                            key: key("values"),
+                            reason: format!(
+                                "{x} is listed twice (values {} and {}); list each value once",
+                                first + 1,
+                                k + 1
+                            ),
+                        });
+                    }
                     list.push(x);
                 }
                 AxisValues::List(list)

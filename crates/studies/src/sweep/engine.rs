@@ -274,8 +274,19 @@ pub(crate) fn open_folder(
         });
     }
     write_whole(&definition_path, text.as_bytes())?;
-    // A fresh sweep starts a fresh compute record.
-    ComputeRecord::default().write(dir)?;
+    // A fresh sweep starts a fresh compute record: none until its first run appends itself
+    // (an old one is removed; a run stopped before it appends leaves none, not a bare header).
+    match std::fs::remove_file(dir.join(super::compute::COMPUTE)) {
+        Ok(()) => {}
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => {}
+        Err(source) => {
+            return Err(SweepError::Io {
+                path: dir.join(super::compute::COMPUTE),
+                what: "cannot remove the old compute record",
+                source,
+            });
+        }
+    }
     let writer = journal::Writer::create(&journal_path, def, &text, shard)?;
     Ok((writer, BTreeMap::new()))
 }

@@ -13,7 +13,7 @@
 //!
 //! # Other metrics
 //!
-//! * `max_energy_rel_err`: the run's largest `|E − E₀|/|E₀|` over every step.
+//! * `max_energy_rel_err`: the run's largest `|E − E₀|/E_s` over every step.
 //! * `flips` (`free-body`, `dzhanibekov`): the number of sign changes of `ω · e₂`, the body
 //!   angular velocity's component on the intermediate principal axis — each is one flip of
 //!   the body (the T-handle's half turn) — as in the scenes' flip-period test.
@@ -226,6 +226,22 @@ impl Metric {
     pub fn not_applicable(&self, scene: &dyn Scene) -> Option<String> {
         let info = scene.info();
         let columns = info.columns();
+        let column = match self {
+            Metric::Column { column, .. } => Some(column.as_str()),
+            m if m.needs_tilt() => Some("tilt"),
+            _ => None,
+        };
+        if let Some((fixed, why)) = scene
+            .fixed_columns()
+            .iter()
+            .find(|(c, _)| Some(*c) == column)
+        {
+            return Some(format!(
+                "`{}`: in scene `{}`, {why}; `{fixed}` has nothing to measure",
+                self.name(),
+                info.name
+            ));
+        }
         if self.needs_tilt() && !columns.iter().any(|c| c == "tilt") {
             return Some(format!(
                 "`{}` needs a hoop scene (a `tilt` column); scene `{}` has none",

@@ -33,6 +33,38 @@ fn good_and_bad(name: &str, good: &str, bad: &str) {
     }
 }
 
+/// Case files take numbers or angle expressions, as scene files do: `pi/3` is π/3 exactly as
+/// a float literal would give it.
+#[test]
+fn case_files_take_angle_expressions_like_scene_files() {
+    let text = |tilt: &str| {
+        format!(
+            "name = \"angles\"\nscene = \"heavy-top\"\nwhy = \"w\"\ngood = \"g\"\n\
+             [parameters]\ntilt0 = {tilt}\n[run]\nt_end = 1.0\n[easy]\ntilt0 = \"pi/6\"\n\
+             [property]\nerror = 1e-6\n"
+        )
+    };
+    let expr = Case::parse(&text("\"pi/3\""), "c.toml").unwrap();
+    let plain = Case::parse(
+        &text(&format!("{:?}", std::f64::consts::PI / 3.0)),
+        "c.toml",
+    )
+    .unwrap();
+    assert_eq!(
+        expr.params.get("tilt0").unwrap(),
+        std::f64::consts::FRAC_PI_3
+    );
+    assert_eq!(expr.params, plain.params);
+    assert_eq!(expr.easy.get("tilt0").unwrap(), std::f64::consts::FRAC_PI_6);
+    let bad = Case::parse(&text("\"pi/x\""), "c.toml")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        bad.contains("parameters.tilt0") && bad.contains("pi/x"),
+        "{bad}"
+    );
+}
+
 #[test]
 fn every_built_in_case_parses_and_states_why_it_is_hard() {
     let cases = Case::built_in().unwrap();

@@ -244,6 +244,7 @@ fn long_runs_compare_the_geometric_methods() {
         200.0,
         0.01,
         40,
+        None,
     );
     let split = &runs[0];
     let summary = split.result.as_ref().unwrap();
