@@ -76,8 +76,12 @@ function differ(a, b) {
 
 async function runPage(name, file) {
   const size = statSync(file).size;
+  // Opened twice: the first load in this browser also starts its WebGL (software) renderer.
+  const cold = await open(file);
+  await cold.page.close();
+  check(cold.errors.length === 0, `${name}: no script error on the first load ${cold.errors.join(' | ')}`);
   const { page, errors, loaded, requests } = await open(file);
-  console.log(`     ${name}: ${(size / 1e6).toFixed(2)} MB, loaded in ${loaded} ms`);
+  console.log(`     ${name}: ${(size / 1e6).toFixed(2)} MB, loaded in ${cold.loaded} ms (first load), ${loaded} ms (again)`);
   check(errors.length === 0, `${name}: no script error ${errors.join(' | ')}`);
   check(requests.length === 0, `${name}: no network request ${requests.join(' ')}`);
   const first = await pixels(page);
