@@ -200,8 +200,10 @@ export function start(data) {
       if (o.frame) o.frame.visible = toggles['body-axes'].checked;
     }
     lab.visible = toggles['lab-axes'].checked;
+    const shown = {};
     for (const v of vectors) {
-      v.arrow.set(vec(v.spec.array, i, f), v.spec.scale);
+      shown[v.spec.name] = vec(v.spec.array, i, f);
+      v.arrow.set(shown[v.spec.name], v.spec.scale);
       if (!toggles.vectors.checked) v.arrow.object.visible = false;
     }
     trail.visible = toggles.trail.checked;
@@ -213,7 +215,15 @@ export function start(data) {
     }
     clock.textContent = `t = ${t.toFixed(3)} s`;
     play.textContent = state.playing ? 'Pause' : 'Play';
-    document.getElementById('overlay').textContent = `t = ${t.toFixed(2)} s`;
+    // The angle between ω and L: zero only for a spin about a principal axis.
+    let between = '';
+    if (shown.omega && shown.L) {
+      const [a, b] = [shown.omega, shown.L];
+      const dot = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+      const norms = Math.hypot(...a) * Math.hypot(...b);
+      if (norms > 0) between = ` · angle between ω and L ${(Math.acos(Math.max(-1, Math.min(1, dot / norms))) * 180 / Math.PI).toFixed(1)}°`;
+    }
+    document.getElementById('overlay').textContent = `t = ${t.toFixed(2)} s${between}`;
   }
   for (const p of plots) draw(p);
   show();

@@ -9,8 +9,8 @@ use std::path::PathBuf;
 
 use anyhow::{Result, bail};
 use clap::ArgMatches;
-use tumble_scenarios::Recorder;
 use tumble_scenarios::drawing;
+use tumble_scenarios::scene::Rows;
 use tumble_studies::simulation::{self, Naming, RunRequest, is_scene_file};
 
 use super::inertia::BodyArgs;
@@ -55,19 +55,8 @@ pub struct Args {
     pub output: PathBuf,
 }
 
-/// Most frames a page may hold (about 3 MB of data a million values).
+/// Most frames a page may hold (a frame is about 40 numbers, 200 bytes of the page).
 const MAX_FRAMES: f64 = 100_000.0;
-
-/// Keeps every row.
-#[derive(Default)]
-struct Rows(Vec<Vec<f64>>);
-
-impl Recorder for Rows {
-    fn row(&mut self, values: &[f64]) -> tumble_integrators::Flow {
-        self.0.push(values.to_vec());
-        tumble_integrators::Flow::Continue
-    }
-}
 
 /// Runs the subcommand; `matches` orders the body flags that follow a `--shape`.
 ///
@@ -114,7 +103,6 @@ fn run_view(args: &Args) -> Result<()> {
             number(args.output_dt)
         );
     }
-    crate::signals::flag();
     let target = SceneArgs {
         scene: scene_arg.clone(),
         set: args.set.clone(),
@@ -162,19 +150,10 @@ fn run_view(args: &Args) -> Result<()> {
         )?;
     }
     let mut rows = Rows::default();
-    let summary = match loaded.scene.simulate(&loaded.params, &plan, &mut rows) {
-        Err(tumble_scenarios::SceneError::Interrupted { t }) => {
-            return Err(crate::signals::Interrupted {
-                code: crate::signals::interrupted().unwrap_or(130),
-                message: format!(
-                    "the simulation stopped at t = {t}; {} was not written",
-                    args.output.display()
-                ),
-            }
-            .into());
-        }
-        other => other?,
-    };
+    let summary = crate::signals::simulated(
+        loaded.scene.simulate(&loaded.params, &plan, &mut rows),
+        &args.output,
+    )?;
     let columns = info.columns();
     let mut data = drawing.data(&columns, &rows.0)?;
     let title = format!("{} — {}", info.name, plan.integrator());

@@ -62,6 +62,20 @@ fn shape(shape: &Shape, placement: &Placement, center: &Point3<f64>) -> Value {
     }
 }
 
+/// The half-sides of the uniform box with principal moments `moments` (side² ∝ I₂ + I₃ − I₁,
+/// …), scaled so that the longest is 1: how a body known only by its moments is drawn.
+#[must_use]
+pub fn equivalent_box(moments: [f64; 3]) -> [f64; 3] {
+    let [i1, i2, i3] = moments;
+    let sq = [i2 + i3 - i1, i1 + i3 - i2, i1 + i2 - i3].map(|v| v.max(0.0).sqrt());
+    let top = sq
+        .iter()
+        .copied()
+        .fold(0.0, f64::max)
+        .max(f64::MIN_POSITIVE);
+    sq.map(|v| v / top)
+}
+
 /// How far the parts reach from `center` (metres): the camera and the arrows are scaled by it.
 #[must_use]
 pub fn reach(parts: &[Part], center: &Point3<f64>) -> f64 {

@@ -93,6 +93,30 @@ fn body(parts: Vec<Value>) -> Object {
 }
 
 impl Drawing {
+    /// A hoop of radius `a` posed by `hoop`, its bead posed by `bead`, the trail on the bead.
+    fn hoop(a: f64, hoop: Pose, bead_pose: Pose) -> Self {
+        Drawing {
+            objects: vec![
+                Object {
+                    name: "hoop",
+                    colour: "#0072b2",
+                    parts: vec![primitive(
+                        "torus",
+                        &[a, 0.025 * a],
+                        &Vector3::zeros(),
+                        &identity(),
+                    )],
+                    pose: hoop,
+                    axes: true,
+                },
+                bead(a, bead_pose),
+                pivot(a),
+            ],
+            tip: None,
+            reach: a,
+        }
+    }
+
     /// The drawing of a scene file's `[body]`: its parts about its fixed point, the trail on
     /// the intermediate principal axis (the flip axis of the Dzhanibekov effect; for a top, the
     /// axis it spins about wobbles with it).
@@ -121,61 +145,20 @@ impl Drawing {
         Ok(match name {
             "free-hoop" => {
                 let a = get("a")?;
-                Drawing {
-                    objects: vec![
-                        Object {
-                            name: "hoop",
-                            colour: "#0072b2",
-                            parts: vec![primitive(
-                                "torus",
-                                &[a, 0.025 * a],
-                                &Vector3::zeros(),
-                                &identity(),
-                            )],
-                            pose: Pose::Quaternion,
-                            axes: true,
-                        },
-                        bead(a, Pose::BeadFree { a }),
-                        pivot(a),
-                    ],
-                    tip: None,
-                    reach: a,
-                }
+                Drawing::hoop(a, Pose::Quaternion, Pose::BeadFree { a })
             }
             "spinning-hoop" | "driven-hoop" => {
                 let a = get("a")?;
                 let omega = (name == "driven-hoop").then(|| get("omega")).transpose()?;
-                Drawing {
-                    objects: vec![
-                        Object {
-                            name: "hoop",
-                            colour: "#0072b2",
-                            parts: vec![primitive(
-                                "torus",
-                                &[a, 0.025 * a],
-                                &Vector3::zeros(),
-                                &identity(),
-                            )],
-                            pose: Pose::VerticalPlane { omega },
-                            axes: true,
-                        },
-                        bead(a, Pose::BeadVertical { a, omega }),
-                        pivot(a),
-                    ],
-                    tip: None,
-                    reach: a,
-                }
+                Drawing::hoop(
+                    a,
+                    Pose::VerticalPlane { omega },
+                    Pose::BeadVertical { a, omega },
+                )
             }
             "free-body" => {
-                // The uniform box with these principal moments: side² ∝ I₂ + I₃ − I₁, ….
-                let (i1, i2, i3) = (get("I1")?, get("I2")?, get("I3")?);
-                let sq = [i2 + i3 - i1, i1 + i3 - i2, i1 + i2 - i3].map(|v| v.max(0.0).sqrt());
-                let top = sq
-                    .iter()
-                    .copied()
-                    .fold(0.0, f64::max)
-                    .max(f64::MIN_POSITIVE);
-                let sides = sq.map(|v| 2.0 * v / top);
+                let half = geometry::equivalent_box([get("I1")?, get("I2")?, get("I3")?]);
+                let sides = half.map(|v| 2.0 * v);
                 let reach = 0.5 * Vector3::from(sides).norm();
                 Drawing {
                     objects: vec![
