@@ -7,6 +7,7 @@ mod output;
 mod plot;
 mod provenance;
 mod signals;
+mod view;
 
 use std::process::ExitCode;
 
@@ -49,6 +50,9 @@ enum Command {
     Simulate(cmd::simulate::Args),
     /// Run a parameter sweep in parallel (a TOML sweep file, or the built-in hoop-tilt map)
     Sweep(cmd::sweep::Args),
+    /// A run, or with --inertia a body's principal axes, as a self-contained interactive 3D
+    /// page (HTML, no network needed)
+    View(cmd::view::Args),
     /// Speed against error: every integrator's error at the final time against wall time and
     /// evaluations (or, with --long, its energy error over a million steps)
     WorkPrecision(cmd::work_precision::Args),
@@ -75,7 +79,7 @@ fn quiet_on_closed_stdout() {
 
 fn main() -> ExitCode {
     quiet_on_closed_stdout();
-    // The matches are kept for `inertia`, whose placement flags belong to the `--shape` they
+    // The matches are kept for `inertia` and `view --inertia`, whose placement flags belong to the `--shape` they
     // follow.
     let matches = Cli::command().get_matches();
     let cli = Cli::from_arg_matches(&matches).unwrap_or_else(|e| e.exit());
@@ -89,6 +93,7 @@ fn main() -> ExitCode {
         Command::Scenes(args) => cmd::scenes::run(&args),
         Command::Simulate(args) => cmd::simulate::run(&args),
         Command::Sweep(args) => cmd::sweep::run(&args),
+        Command::View(args) => cmd::view::run(&args, matches.subcommand_matches("view")),
         Command::WorkPrecision(args) => cmd::work_precision::run(&args),
     };
     match result {

@@ -145,6 +145,28 @@ pub fn interruptible(scene: &'static dyn Scene) -> Interruptible {
     }
 }
 
+/// The result of a simulation whose rows go to `output`: a run stopped by a signal becomes
+/// [`Interrupted`] (the output was not written), other errors pass through.
+///
+/// # Errors
+/// The run's error.
+pub fn simulated<T>(
+    result: Result<T, tumble_scenarios::SceneError>,
+    output: &std::path::Path,
+) -> anyhow::Result<T> {
+    match result {
+        Err(tumble_scenarios::SceneError::Interrupted { t }) => Err(Interrupted {
+            code: interrupted().unwrap_or(130),
+            message: format!(
+                "the simulation stopped at t = {t}; {} was not written",
+                output.display()
+            ),
+        }
+        .into()),
+        other => Ok(other?),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

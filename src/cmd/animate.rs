@@ -147,19 +147,7 @@ pub fn run(args: &Args) -> Result<()> {
             .resolve(info)?;
             plan.cancel = Some(tumble_scenarios::scene::CancelFlag(crate::signals::flag()));
             let mut rows = Rows::default();
-            match scene.simulate(&params, &plan, &mut rows) {
-                Err(tumble_scenarios::SceneError::Interrupted { t }) => {
-                    return Err(crate::signals::Interrupted {
-                        code: crate::signals::interrupted().unwrap_or(130),
-                        message: format!(
-                            "the simulation stopped at t = {t}; {} was not written",
-                            args.output.display()
-                        ),
-                    }
-                    .into());
-                }
-                other => other?,
-            };
+            crate::signals::simulated(scene.simulate(&params, &plan, &mut rows), &args.output)?;
             (rows.0, info.columns(), plan.integrator().to_string())
         }
     };
@@ -382,18 +370,10 @@ impl Painter {
                 }
             }
             "free-body" => {
-                // The uniform box with these principal moments: x² ∝ I₂ + I₃ − I₁, ….
-                let (i1, i2, i3) = (get("I1")?, get("I2")?, get("I3")?);
-                let sq = [i2 + i3 - i1, i1 + i3 - i2, i1 + i2 - i3].map(|v| v.max(0.0).sqrt());
-                let top = sq
-                    .iter()
-                    .copied()
-                    .fold(0.0, f64::max)
-                    .max(f64::MIN_POSITIVE);
+                let half =
+                    crate::view::geometry::equivalent_box([get("I1")?, get("I2")?, get("I3")?]);
                 Painter {
-                    look: Look::Box {
-                        half: sq.map(|v| v / top),
-                    },
+                    look: Look::Box { half },
                     radius: 1.6,
                 }
             }

@@ -23,6 +23,7 @@ use serde::Serialize;
 use tumble_inertia::{
     MassProperties, MassSpec, Placement, Shape, Units, ValidationOptions, load_mesh, parse_points,
 };
+use tumble_scenarios::drawing::Part;
 
 /// Flags of `tumble inertia`.
 #[derive(clap::Args, Debug)]
@@ -32,6 +33,18 @@ pub struct Args {
     /// free of degenerate faces.
     #[arg(value_name = "FILE")]
     pub files: Vec<PathBuf>,
+    #[command(flatten)]
+    pub body: BodyArgs,
+    /// Print one JSON object: mass, volume, center_of_mass, inertia (row-major 3×3),
+    /// principal_moments (ascending), principal_axes (3×3, columns are the axes),
+    /// principal_euler_zyz.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// The flags that describe a body besides its mesh files (shared with `tumble view --inertia`).
+#[derive(clap::Args, Debug)]
+pub struct BodyArgs {
     /// Length unit of the mesh files' coordinates (densities stay in kg/m³).
     #[arg(long, value_name = "mm|cm|m", default_value = "m")]
     pub units: String,
@@ -63,15 +76,25 @@ pub struct Args {
     /// line `m,x,y,z` are allowed. Repeatable.
     #[arg(long, value_name = "FILE.csv", action = clap::ArgAction::Append)]
     pub points: Vec<PathBuf>,
-    /// Print one JSON object: mass, volume, center_of_mass, inertia (row-major 3×3),
-    /// principal_moments (ascending), principal_axes (3×3, columns are the axes),
-    /// principal_euler_zyz.
-    #[arg(long)]
-    pub json: bool,
     /// Accept an inverted mesh (inward-facing normals) by reversing all its faces, with a
     /// note on stderr; without this flag an inverted mesh is an error.
     #[arg(long)]
     pub flip_inverted: bool,
+}
+
+impl BodyArgs {
+    /// Whether any flag was given (the units left at their default).
+    pub fn any(&self) -> bool {
+        !(self.density.is_empty()
+            && self.mass.is_empty()
+            && self.euler.is_empty()
+            && self.shape.is_empty()
+            && self.at.is_empty()
+            && self.point.is_empty()
+            && self.points.is_empty()
+            && !self.flip_inverted
+            && self.units == "m")
+    }
 }
 
 /// The `--json` output; field order is the documented key order.
@@ -112,15 +135,15 @@ struct ShapeFlags {
 
 /// The flags as the command line orders them: those before the first `--shape` (the meshes'
 /// mass and the whole body's turn), and each shape with the flags that follow it.
-struct Ordered {
+pub(crate) struct Ordered {
     mesh_mass: Option<f64>,
     mesh_density: Option<f64>,
-    turn: Option<String>,
+    pub(crate) turn: Option<String>,
     shapes: Vec<ShapeFlags>,
 }
 
 /// Sorts the repeatable flags by their position on the command line.
-fn ordered(args: &Args, matches: Option<&ArgMatches>) -> Result<Ordered> {
+pub(crate) fn ordered(args: &BodyArgs, matches: Option<&ArgMatches>) -> Result<Ordered> {
     let indices = |id: &str, n: usize| -> Vec<usize> {
         matches
             .and_then(|m| m.indices_of(id))
@@ -202,15 +225,17 @@ fn ordered(args: &Args, matches: Option<&ArgMatches>) -> Result<Ordered> {
 }
 
 /// The assembled body, the volume of its solid parts and a description of its sources.
-struct Assembled {
-    body: MassProperties,
+pub(crate) struct Assembled {
+    pub(crate) body: MassProperties,
     volume: f64,
-    sources: Vec<String>,
+    pub(crate) sources: Vec<String>,
     mass_note: String,
+    /// The parts as given, in the body's frame (before the whole body's --euler turn), to draw.
+    pub(crate) parts: Vec<Part>,
 }
 
 /// Reads and validates every source, then combines them.
-fn assemble(args: &Args, flags: &Ordered) -> Result<Assembled> {
+pub(crate) fn assemble(files: &[PathBuf], args: &BodyArgs, flags: &Ordered) -> Result<Assembled> {
     let units: Units = args
         .units
         .parse()
@@ -221,10 +246,11 @@ fn assemble(args: &Args, flags: &Ordered) -> Result<Assembled> {
     };
     let mut parts = Vec::new();
     let mut sources = Vec::new();
+    let mut drawn = Vec::new();
     let mut volume = 0.0;
     // Meshes: one material; a total mass is spread over their total volume.
     let mut meshes = Vec::new();
-    for path in &args.files {
+    for path in files {
         let file = path.display().to_string();
         let mesh = load_mesh(path, &options)?;
         if mesh.was_flipped() {
@@ -266,6 +292,7 @@ fn assemble(args: &Args, flags: &Ordered) -> Result<Assembled> {
     }
     for (file, mesh) in &meshes {
         volume += mesh.volume();
+        drawn.push(Part::Mesh(mesh.clone()));
         parts.push(
             mesh.mass_properties(spec)
                 .with_context(|| match (spec, flags.mesh_mass) {
@@ -304,6 +331,7 @@ fn assemble(args: &Args, flags: &Ordered) -> Result<Assembled> {
     }
     if !points.is_empty() {
         parts.push(MassProperties::from_point_masses(&points).context("point masses")?);
+        drawn.push(Part::Points(points));
     }
     // Shapes, placed.
     for s in &flags.shapes {
@@ -336,6 +364,7 @@ fn assemble(args: &Args, flags: &Ordered) -> Result<Assembled> {
         let props = shape.mass_properties(spec).with_context(|| what.clone())?;
         volume += shape.volume().unwrap_or(0.0);
         parts.push(placement.place(&props));
+        drawn.push(Part::Shape(shape, placement));
         sources.push(what);
     }
     if parts.is_empty() {
@@ -355,6 +384,7 @@ fn assemble(args: &Args, flags: &Ordered) -> Result<Assembled> {
         volume,
         sources,
         mass_note,
+        parts: drawn,
     })
 }
 
@@ -362,7 +392,7 @@ fn assemble(args: &Args, flags: &Ordered) -> Result<Assembled> {
 pub fn run(args: &Args, matches: Option<&ArgMatches>) -> Result<()> {
     // Flags in the wrong place or given twice are usage errors, reported as clap reports its
     // own (exit code 2).
-    let flags = ordered(args, matches).unwrap_or_else(|e| {
+    let flags = ordered(&args.body, matches).unwrap_or_else(|e| {
         clap::Error::raw(clap::error::ErrorKind::ArgumentConflict, format!("{e}\n")).exit()
     });
     let turn = flags
@@ -375,7 +405,8 @@ pub fn run(args: &Args, matches: Option<&ArgMatches>) -> Result<()> {
         volume,
         sources,
         mass_note,
-    } = assemble(args, &flags)?;
+        ..
+    } = assemble(&args.files, &args.body, &flags)?;
     let principal_euler = body.principal_euler_zyz();
     if args.json {
         let report = Report {

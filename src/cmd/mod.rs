@@ -11,4 +11,5 @@ pub mod scenes;
 pub mod simulate;
 pub mod sweep;
 pub mod sweep_diff;
+pub mod view;
 pub mod work_precision;

@@ -17,4 +17,5 @@ mod special_files;
 mod support;
 mod sweep;
 mod sweep_diff;
+mod view;
 mod work_precision;

@@ -33,6 +33,7 @@ use tumble_inertia::{
 };
 use tumble_kinematics::EulerConvention;
 
+use crate::drawing::Part;
 use crate::params::Params;
 use crate::scenes::body::BodySceneKind;
 use crate::toml_file::{self, Location};
@@ -175,10 +176,11 @@ impl Place<'_> {
     }
 }
 
-/// The body of a `[body]` table and, for the heavy top, its pivot.
+/// The body of a `[body]` table, its parts (to draw it) and, for the heavy top, its pivot.
 pub(crate) struct Body {
     pub(crate) props: MassProperties,
     pub(crate) pivot: Option<Point3<f64>>,
+    pub(crate) parts: Vec<Part>,
 }
 
 /// Reads every source of the table (files relative to the scene file's directory) and combines
@@ -192,6 +194,7 @@ pub(crate) fn read(
     let raw = table.get_ref();
     let dir = Path::new(place.origin).parent().unwrap_or(Path::new(""));
     let mut parts = Vec::new();
+    let mut drawn = Vec::new();
     if let Some(mesh) = &raw.mesh {
         let units = match &raw.units {
             None => Units::Metre,
@@ -223,6 +226,7 @@ pub(crate) fn read(
             place.error(&at, key, e)
         })?;
         parts.push(props);
+        drawn.push(Part::Mesh(loaded));
     } else if let Some(u) = &raw.units {
         return Err(place.error(
             &u.span(),
@@ -297,6 +301,7 @@ pub(crate) fn read(
         let props = MassProperties::from_point_masses(&points)
             .map_err(|e| place.error(&span, "body.point", e))?;
         parts.push(props);
+        drawn.push(Part::Points(points));
     }
     for (k, s) in raw.shape.iter().flatten().enumerate() {
         let prefix = format!("body.shape[{}].", k + 1);
@@ -342,6 +347,7 @@ pub(crate) fn read(
                 .unwrap_or_default(),
         };
         parts.push(placement.place(&props));
+        drawn.push(Part::Shape(shape, placement));
     }
     if parts.is_empty() {
         return Err(place.error(
@@ -369,7 +375,11 @@ pub(crate) fn read(
         }
         (None, _) => None,
     };
-    Ok(Body { props, pivot })
+    Ok(Body {
+        props,
+        pivot,
+        parts: drawn,
+    })
 }
 
 /// An error and its sources, on one line.

@@ -55,6 +55,7 @@ mod applicability;
 pub mod body_table;
 pub mod dispatch;
 pub mod display;
+pub mod drawing;
 pub mod error;
 pub mod lagrangian;
 pub mod params;
