@@ -280,7 +280,12 @@ pub(super) fn solve<M: StageModel<N>, const S: usize, const N: usize>(
     start: &Start<'_, N>,
     iteration: Iteration,
 ) -> Result<(Increments<N>, usize), Failure> {
-    let (k0, mut w, reused, predicted) = begin(table, newton, model, start, iteration.reuse)?;
+    let Begun {
+        k0,
+        mut w,
+        reused,
+        predicted,
+    } = begin(table, newton, model, start, iteration.reuse)?;
     // Linearizations after the start's (or the last step's kept matrix).
     let mut relinearized = 0u32;
     let mut chart_p0 = predicted.unwrap_or(*start.pi0);
@@ -355,17 +360,29 @@ pub(super) struct Iteration {
     pub(super) reuse: bool,
 }
 
+/// How the iteration starts ([`begin`]).
+struct Begun<const N: usize> {
+    /// The rates `F(z₀)`.
+    k0: Rates<N>,
+    /// The Newton matrix's responses.
+    w: Responses,
+    /// `w` is the last step's, kept because this step continues it with the same `h`.
+    reused: bool,
+    /// The `P₀` guess of the continued collocation polynomial, when the stages start from it.
+    predicted: Option<Vector3<f64>>,
+}
+
 /// The start of the iteration: the rates `F(z₀)`, the Newton matrix's responses (the last
-/// step's, when this step continues it with the same `h`, flagged `true`; else formed at `z₀`),
-/// and the starting stages in `newton.z` — the last step's collocation polynomial continued,
-/// with its `P₀` guess returned, or `Zᵢ = z₀ + cᵢ h F(z₀)`.
+/// step's, when this step continues it with the same `h`; else formed at `z₀`), and the
+/// starting stages in `newton.z` — the last step's collocation polynomial continued, with its
+/// `P₀` guess, or `Zᵢ = z₀ + cᵢ h F(z₀)`.
 fn begin<M: StageModel<N>, const S: usize, const N: usize>(
     table: &GaussTableau<S>,
     newton: &mut Newton<S>,
     model: &M,
     start: &Start<'_, N>,
     reuse: bool,
-) -> Result<(Rates<N>, Responses, bool, Option<Vector3<f64>>), Failure> {
+) -> Result<Begun<N>, Failure> {
     let d = 6 + 2 * N;
     let pcol = 3 + N;
     let (r0, pi0, q0, p0, h) = (start.r0, start.pi0, start.q0, start.p0, start.h);
@@ -398,7 +415,12 @@ fn begin<M: StageModel<N>, const S: usize, const N: usize>(
         }
     }
     newton.last = None;
-    Ok((k0, w, reused, predicted))
+    Ok(Begun {
+        k0,
+        w,
+        reused,
+        predicted,
+    })
 }
 
 /// One simplified-Newton correction: evaluates the stages in `newton.z` (rates into
