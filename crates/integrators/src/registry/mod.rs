@@ -2,9 +2,18 @@
 //!
 //! Names are lowercase, author + order (`yoshida6`, `kahan-li8`), Gauss–Legendre by order
 //! (`gauss2` … `gauss12`), rigid-body methods by what they are (`lgvi`, `lgvi4` … `lgvi10`,
-//! `lie-gauss4` … `lie-gauss10`, `rkmk4`, `cg3`, `split2` … `split8`, `split-exact2` … `split-exact8`, `dmv`, `exact`). To add a method, append a
-//! [`MethodInfo`] to [`METHODS`]; the registry tests check that names are unique and lowercase
-//! and that every composition and Gauss table is listed.
+//! `lie-gauss4` … `lie-gauss10`, `rkmk4`, `cg3`, `split2` … `split8`, `split-exact2` …
+//! `split-exact8`, `dmv`, `exact`).
+//!
+//! # Rows build steppers
+//!
+//! A row of [`ROWS`] is [`MethodInfo::new`]`(name, stepping, summary)`: the [`Stepping`] is the
+//! family's stepper and the `const` table it walks, and the entry's order, stages, family,
+//! properties and problem kinds are derived from it ([`Stepping::order`] …). [`build`] turns a
+//! row into its stepper for a kind of problem and hands it to a receiver; nothing else maps
+//! names to steppers. Adding an explicit pair, a Gauss table or a composition table is its
+//! table and one row (`docs/architecture.md`, "Recipes"); the registry tests check that names
+//! are unique and lowercase and that every composition and Gauss table is listed.
 //!
 //! # Compositions of a scene's base method
 //!
@@ -17,7 +26,8 @@
 //! `split-exact4` … `split-exact8` are the same methods as `mclachlan4:lgvi`,
 //! `kahan-li6:lgvi`, `kahan-li8:lgvi`, `sofroniou-spaletta10:lgvi`, `mclachlan4:split2` …
 //! `kahan-li8:split2` and `mclachlan4:split-exact2` … `kahan-li8:split-exact2`; [`composed`] splits
-//! a `TABLE:BASE` name into its table and base.
+//! a `TABLE:BASE` name into its table and base. The `TABLE:BASE` entries are not written out:
+//! [`methods`] generates them from [`BASES`] × [`composition::ALL`], after [`ROWS`].
 //!
 //! # Order
 //!

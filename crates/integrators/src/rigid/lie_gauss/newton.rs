@@ -3,6 +3,20 @@
 //! complex `d × d` inverse per conjugate pair of eigenvalues, the stages' response to the chart
 //! momentum, and the last step's collocation polynomial carried into the next step's chart
 //! as its starting guess ([`super`] module doc).
+//!
+//! # One simplified-Newton module for Gauss and Lie–Gauss?
+//!
+//! Both solve with `𝟙 − hA ⊗ J`. Gauss–Legendre ([`crate::gauss`]) factors the whole
+//! `sn × sn` matrix by faer's LU once per step and applies it to one right-hand side per
+//! iteration; Newton is its opt-in solver (fixed point is the default). Lie–Gauss applies the
+//! inverse to the residual every iteration *and* to three more columns (`Y`, the stages'
+//! response to `P₀`, for the 3 × 3 Schur complement), keeps the factorization across steps,
+//! and so forms explicit inverses of the `s/2` complex `d × d` blocks of the eigenbasis and
+//! applies them as matrix–vector products. The part the two could share is the eigenbasis of
+//! `A` and `factor`/`apply_inverse` below; the rest (`Y`, the predictor, the chart moves) is
+//! Lie–Gauss's own. Gauss is not moved onto it here: its Newton iterates would change in the
+//! last bits (a different factorization rounds differently), and its outputs are kept
+//! identical; moving it is a change of its own, measured against faer's LU on the scenes.
 
 use nalgebra::{Matrix3, Vector3};
 
