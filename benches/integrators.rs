@@ -257,10 +257,10 @@ fn bench_peers(c: &mut Criterion) {
 mod rigid {
     use super::*;
     use nalgebra::{Matrix3, Vector3};
-    use tumble_integrators::rigid::{
-        Dmv, EulerEquations, ExactSplitting, ExactStepper, FreeRigidBody, GroupState, Lgvi,
-        PrincipalAxisSplitting, RigidBodyState, cg3, rkmk4, split4, split6, split8,
-    };
+    use tumble_integrators::registry::build::{self, Receive};
+    use tumble_integrators::registry::find;
+    use tumble_integrators::rigid::{EulerEquations, FreeRigidBody, GroupState, RigidBodyState};
+    use tumble_integrators::{ProblemKind, State};
     use tumble_kinematics::so3::exp;
 
     pub const H: f64 = 0.01;
@@ -280,11 +280,23 @@ mod rigid {
         )
     }
 
-    fn steps<P: ?Sized, St: Stepper<P>>(mut st: St, p: &P, mut s: St::State, n: u64) -> St::State {
-        for k in 0..n {
-            st.step(p, k as f64 * H, &mut s, H).expect("step");
+    /// Takes `n` steps of the stepper it receives from `s0`.
+    struct Steps<'a, P: ?Sized, S> {
+        problem: &'a P,
+        s0: S,
+        n: u64,
+    }
+
+    impl<P: ?Sized, S: State> Receive<P, S> for Steps<'_, P, S> {
+        type Output = S;
+        fn receive<St: Stepper<P, State = S> + Clone>(self, mut st: St) -> S {
+            let mut s = self.s0;
+            for k in 0..self.n {
+                st.step(self.problem, k as f64 * H, &mut s, H)
+                    .expect("step");
+            }
+            s
         }
-        s
     }
 
     pub const METHODS: [&str; 10] = [
@@ -300,23 +312,41 @@ mod rigid {
         "exact",
     ];
 
-    /// The state after `n` steps of `name` from the initial state.
+    /// The state after `n` steps of `name` from the initial state (the registry builds the
+    /// stepper: on the body, on Euler's equations as a Lie-group vector field, or on the free
+    /// body as such).
     pub fn run(name: &str, body: &FreeRigidBody, n: u64) -> RigidBodyState {
+        let method = find(name).expect("registered");
         let s0 = initial();
-        let field = EulerEquations(body);
-        match name {
-            "lgvi" => steps(Lgvi::default(), body, s0, n),
-            "dmv" => steps(Dmv::new(), body, s0, n),
-            "rkmk4" => steps(rkmk4::<3>(), &field, GroupState::from(s0), n).into(),
-            "cg3" => steps(cg3::<3>(), &field, GroupState::from(s0), n).into(),
-            "split2" => steps(PrincipalAxisSplitting::new(), body, s0, n),
-            "split4" => steps(split4(), body, s0, n),
-            "split6" => steps(split6(), body, s0, n),
-            "split8" => steps(split8(), body, s0, n),
-            "split-exact2" => steps(ExactSplitting::new(), body, s0, n),
-            "exact" => steps(ExactStepper::new(), body, s0, n),
-            other => panic!("unknown method {other}"),
+        let kind = method.problems[0];
+        match kind {
+            ProblemKind::LieVectorField => {
+                let field = EulerEquations(body);
+                let steps = Steps {
+                    problem: &field,
+                    s0: GroupState::from(s0),
+                    n,
+                };
+                build::lie_vector_field::<_, _, 3>(method, steps).map(RigidBodyState::from)
+            }
+            ProblemKind::FreeRigidBody => build::free_rigid_body(
+                method,
+                Steps {
+                    problem: body,
+                    s0,
+                    n,
+                },
+            ),
+            _ => build::rigid_body(
+                method,
+                Steps {
+                    problem: body,
+                    s0,
+                    n,
+                },
+            ),
         }
+        .expect("a rigid-body method")
     }
 }
 

@@ -30,20 +30,35 @@ use std::time::Instant;
 
 use nalgebra::{Matrix3, Vector3};
 
+use tumble_integrators::registry::build::{self, Receive};
+use tumble_integrators::registry::{BaseStepper, MethodInfo, Stepping};
 use tumble_integrators::rigid::{
-    CoupledLgvi, CoupledLieGauss, CoupledMonitor, CoupledState, Deviations, ExactSplitting,
-    FreeRigidBody, LGVI_COMPOSITIONS, LIE_GAUSS_METHODS, Lgvi, LieGauss, RigidBody,
+    CoupledLagrangian, CoupledMonitor, CoupledState, Deviations, FreeRigidBody, RigidBody,
     RigidBodyMonitor, RigidBodyState,
 };
-use tumble_integrators::tables::composition::{KAHAN_LI6, KAHAN_LI8, MCLACHLAN4};
-use tumble_integrators::tables::gauss::{GAUSS4, GAUSS6, GAUSS8, GAUSS10};
-use tumble_integrators::tables::{CompositionTable, GaussTableau};
-use tumble_integrators::{Composition, Driver, Stepper};
+use tumble_integrators::{Driver, ProblemKind, Stepper};
 use tumble_scenarios::scenes::find;
 use tumble_scenarios::scenes::free_hoop::FreeHoopScene;
 use tumble_scenarios::scenes::rigid::HeavyTopScene;
 
 const STEPS: u64 = 1 << 20;
+
+/// The methods of the report, by registry name (the registry builds their steppers).
+const METHODS: [&str; 13] = [
+    "lgvi",
+    "lgvi4",
+    "lgvi6",
+    "lgvi8",
+    "lgvi10",
+    "lie-gauss4",
+    "lie-gauss6",
+    "lie-gauss8",
+    "lie-gauss10",
+    "split-exact2",
+    "split-exact4",
+    "split-exact6",
+    "split-exact8",
+];
 
 /// One run's maxima.
 struct Outcome {
@@ -52,90 +67,60 @@ struct Outcome {
     seconds: f64,
 }
 
-fn rigid<B: RigidBody, St: Stepper<B, State = RigidBodyState>>(
-    body: &B,
+/// Runs the stepper it receives on a rigid body for [`STEPS`] steps, monitoring invariants.
+struct RigidRun<'a, B> {
+    body: &'a B,
     s0: RigidBodyState,
-    mut stepper: St,
     h: f64,
-) -> Outcome {
-    let mut monitor = RigidBodyMonitor::new(body);
-    let mut s = s0;
-    let start = Instant::now();
-    Driver::new(0.0, STEPS as f64 * h)
-        .and_then(|d| d.run_fixed(&mut stepper, body, &mut s, h, &mut monitor))
-        .unwrap_or_else(|e| panic!("run failed: {e}"));
-    Outcome {
-        deviations: monitor.deviations(),
-        l0: s0.spatial_momentum().norm(),
-        seconds: start.elapsed().as_secs_f64(),
+}
+
+impl<B: RigidBody> Receive<B, RigidBodyState> for RigidRun<'_, B> {
+    type Output = Outcome;
+    fn receive<St: Stepper<B, State = RigidBodyState> + Clone>(self, mut stepper: St) -> Outcome {
+        let mut monitor = RigidBodyMonitor::new(self.body);
+        let mut s = self.s0;
+        let start = Instant::now();
+        Driver::new(0.0, STEPS as f64 * self.h)
+            .and_then(|d| d.run_fixed(&mut stepper, self.body, &mut s, self.h, &mut monitor))
+            .unwrap_or_else(|e| panic!("run failed: {e}"));
+        Outcome {
+            deviations: monitor.deviations(),
+            l0: self.s0.spatial_momentum().norm(),
+            seconds: start.elapsed().as_secs_f64(),
+        }
     }
 }
 
-/// A method of the report.
-#[derive(Clone, Copy)]
-enum Method {
-    /// The LGVI (`None`) or its composition by a table of [`LGVI_COMPOSITIONS`].
-    Lgvi(Option<&'static CompositionTable>),
-    /// The variational Lie–Gauss method with this many stages.
-    LieGauss(usize),
-    /// `split-exact2` (`None`) or its composition `split-exact4` … `split-exact8` (rigid
-    /// bodies only).
-    SplitExact(Option<&'static CompositionTable>),
-}
-
-/// Every method of the report, by registry name.
-fn methods() -> impl Iterator<Item = (&'static str, Method)> {
-    std::iter::once(("lgvi", Method::Lgvi(None)))
-        .chain(
-            LGVI_COMPOSITIONS
-                .iter()
-                .map(|(n, t)| (*n, Method::Lgvi(Some(*t)))),
-        )
-        .chain(
-            LIE_GAUSS_METHODS
-                .iter()
-                .map(|(n, s)| (*n, Method::LieGauss(*s))),
-        )
-        .chain([
-            ("split-exact2", Method::SplitExact(None)),
-            ("split-exact4", Method::SplitExact(Some(&MCLACHLAN4))),
-            ("split-exact6", Method::SplitExact(Some(&KAHAN_LI6))),
-            ("split-exact8", Method::SplitExact(Some(&KAHAN_LI8))),
-        ])
-}
-
-/// Runs the Lie–Gauss method of `S` stages on a coupled model.
-fn coupled_lie_gauss<const S: usize>(
-    table: &'static GaussTableau<S>,
-    model: &tumble_scenarios::scenes::free_hoop::FreeHoop,
-    s: &mut CoupledState<1>,
+/// Runs the stepper it receives on a coupled model for [`STEPS`] steps, monitoring invariants.
+struct CoupledRun<'a, L> {
+    model: &'a L,
+    s0: CoupledState<1>,
     h: f64,
-    monitor: &mut CoupledMonitor<'_, tumble_scenarios::scenes::free_hoop::FreeHoop, 1>,
-) -> Result<(), tumble_integrators::Error> {
-    Driver::new(0.0, STEPS as f64 * h)?
-        .run_fixed(
-            &mut CoupledLieGauss::<S, 1>::new(table),
-            model,
-            s,
-            h,
-            monitor,
-        )
-        .map(|_| ())
 }
 
-/// Runs the method on a rigid body.
-fn rigid_method<B: RigidBody>(body: &B, s0: RigidBodyState, method: Method, h: f64) -> Outcome {
-    match method {
-        Method::Lgvi(None) => rigid(body, s0, Lgvi::new(), h),
-        Method::Lgvi(Some(t)) => rigid(body, s0, Composition::new(t, Lgvi::new()), h),
-        Method::LieGauss(2) => rigid(body, s0, LieGauss::new(&GAUSS4), h),
-        Method::LieGauss(3) => rigid(body, s0, LieGauss::new(&GAUSS6), h),
-        Method::LieGauss(4) => rigid(body, s0, LieGauss::new(&GAUSS8), h),
-        Method::LieGauss(_) => rigid(body, s0, LieGauss::new(&GAUSS10), h),
-        Method::SplitExact(None) => rigid(body, s0, ExactSplitting::new(), h),
-        Method::SplitExact(Some(t)) => {
-            rigid(body, s0, Composition::new(t, ExactSplitting::new()), h)
+impl<L: CoupledLagrangian<1>> Receive<L, CoupledState<1>> for CoupledRun<'_, L> {
+    type Output = Outcome;
+    fn receive<St: Stepper<L, State = CoupledState<1>> + Clone>(self, mut stepper: St) -> Outcome {
+        let mut monitor = CoupledMonitor::new(self.model);
+        let mut s = self.s0;
+        let start = Instant::now();
+        Driver::new(0.0, STEPS as f64 * self.h)
+            .and_then(|d| d.run_fixed(&mut stepper, self.model, &mut s, self.h, &mut monitor))
+            .unwrap_or_else(|e| panic!("run failed: {e}"));
+        Outcome {
+            deviations: monitor.deviations(),
+            l0: self.s0.spatial_momentum().norm(),
+            seconds: start.elapsed().as_secs_f64(),
         }
+    }
+}
+
+/// The method is the LGVI or a composition of it.
+fn is_lgvi(method: &MethodInfo) -> bool {
+    match method.stepping {
+        Stepping::Lgvi => true,
+        Stepping::Composition { base, .. } => base.stepper == BaseStepper::Lgvi,
+        _ => false,
     }
 }
 
@@ -155,74 +140,40 @@ fn main() {
         let info = find(scene).expect("built-in scene").info();
         let params = info.default_params();
         let h = info.default_step;
-        for (method, kind) in methods() {
+        for method in METHODS {
+            let info = tumble_integrators::registry::find(method).expect("registered");
             let name = format!("{scene}/{method}");
-            if !wanted(&name) || (scene == "free-hoop" && matches!(kind, Method::SplitExact(_))) {
+            let coupled = scene == "free-hoop";
+            if !wanted(&name)
+                || (coupled && !info.problems.contains(&ProblemKind::CoupledRigidBody))
+            {
                 continue;
             }
             let out = match scene {
                 "free-body" => {
                     let (body, s0) = free_body(&params);
-                    rigid_method(&body, s0, kind, h)
+                    build::rigid_body(info, RigidRun { body: &body, s0, h })
                 }
                 "heavy-top" => {
                     let (top, s0) = HeavyTopScene::top_and_state(&params).expect("defaults");
-                    rigid_method(&top, s0, kind, h)
+                    build::rigid_body(info, RigidRun { body: &top, s0, h })
                 }
                 _ => {
                     let (model, s0) = FreeHoopScene::model(&params).expect("defaults");
-                    let mut monitor = CoupledMonitor::new(&model);
-                    let mut s = s0;
-                    let start = Instant::now();
-                    let driver = Driver::new(0.0, STEPS as f64 * h).expect("horizon");
-                    let run = match kind {
-                        Method::Lgvi(None) => driver
-                            .run_fixed(
-                                &mut CoupledLgvi::<1>::new(),
-                                &model,
-                                &mut s,
-                                h,
-                                &mut monitor,
-                            )
-                            .map(|_| ()),
-                        Method::Lgvi(Some(t)) => driver
-                            .run_fixed(
-                                &mut Composition::new(t, CoupledLgvi::<1>::new()),
-                                &model,
-                                &mut s,
-                                h,
-                                &mut monitor,
-                            )
-                            .map(|_| ()),
-                        Method::LieGauss(2) => {
-                            coupled_lie_gauss(&GAUSS4, &model, &mut s, h, &mut monitor)
-                        }
-                        Method::LieGauss(3) => {
-                            coupled_lie_gauss(&GAUSS6, &model, &mut s, h, &mut monitor)
-                        }
-                        Method::LieGauss(4) => {
-                            coupled_lie_gauss(&GAUSS8, &model, &mut s, h, &mut monitor)
-                        }
-                        Method::LieGauss(_) => {
-                            coupled_lie_gauss(&GAUSS10, &model, &mut s, h, &mut monitor)
-                        }
-                        Method::SplitExact(_) => {
-                            unreachable!("split-exact is skipped on free-hoop")
-                        }
-                    };
-                    run.unwrap_or_else(|e| panic!("{name}: run failed: {e}"));
-                    Outcome {
-                        deviations: monitor.deviations(),
-                        l0: s0.spatial_momentum().norm(),
-                        seconds: start.elapsed().as_secs_f64(),
-                    }
+                    build::coupled::<_, _, 1>(
+                        info,
+                        CoupledRun {
+                            model: &model,
+                            s0,
+                            h,
+                        },
+                    )
                 }
-            };
-            let stages = match kind {
-                Method::Lgvi(table) | Method::SplitExact(table) => {
-                    table.map_or(1, |t| t.gammas.len())
-                }
-                Method::LieGauss(_) => 1,
+            }
+            .unwrap_or_else(|e| panic!("{name}: {e}"));
+            let stages = match info.stepping {
+                Stepping::Composition { table, .. } => table.gammas.len(),
+                _ => 1,
             };
             let bound = 10.0 * f64::EPSILON * ((STEPS as usize * stages) as f64).sqrt();
             let d = out.deviations;
@@ -241,7 +192,7 @@ fn main() {
             check("|dLz|/|L0|", vertical);
             if scene == "free-body" {
                 check("|dL|/|L0|", momentum);
-                if matches!(kind, Method::Lgvi(_)) {
+                if is_lgvi(info) {
                     check("|dH|/|H0|", d.energy_relative);
                 }
             }

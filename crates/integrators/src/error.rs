@@ -106,6 +106,9 @@ pub enum Error {
     /// A name that the registry does not know.
     #[error("unknown integrator `{0}`")]
     UnknownMethod(String),
+    /// A method asked to integrate a kind of problem it has no stepper for.
+    #[error(transparent)]
+    NoStepper(#[from] crate::registry::build::NoStepper),
 }
 
 /// Checks that a step size is finite and positive.

@@ -39,7 +39,11 @@
 //!   increments `R + R G`; problems are capabilities again ([`rigid::RigidBody`],
 //!   [`rigid::LieVectorField`], [`rigid::CoupledLagrangian`]); diagnostics are observers.
 //! - **Verification.** [`verification`] is the shared observed-order harness and the exact
-//!   test problems; [`registry`] lists every method with its order, family and properties.
+//!   test problems.
+//! - **Registry.** [`registry`] lists every method as a row holding its family and its table
+//!   ([`registry::Stepping`]), from which its order, stages and properties are derived, and
+//!   [`registry::build`] makes a row's stepper for a kind of problem: the one place a method
+//!   becomes a stepper, matched by family, so a family without a case is a compile error.
 //!
 //! ## Example
 //!

@@ -38,6 +38,12 @@
 //! * E. Celledoni, H. Marthinsen, B. Owren, "An introduction to Lie group integrators — basics,
 //!   new developments and applications", J. Comput. Phys. 257 (2014) — dexp, dexpinv, Cayley map.
 
+mod jacobian;
+
+pub use jacobian::{
+    ExpCoefficients, right_jacobian_derivative, right_jacobian_derivative_transpose,
+};
+
 use nalgebra::{Matrix3, Quaternion, RealField, Rotation3, UnitQuaternion, Vector3};
 
 use crate::{KinematicsError, real, to_f64};

@@ -1,13 +1,15 @@
 //! Dispatch: from a validated [`RunPlan`] to a stepper on the scene's model.
 //!
-//! This is the one place where a method's registry name becomes a stepper type. Everything
-//! else asks the registry ([`tumble_integrators::registry`]) what a method *is* — adaptive,
-//! with dense output, which [`ProblemKind`]s it integrates — and a scene states which kinds its
-//! model offers ([`crate::SceneInfo::problems`]); the plan carries the kind chosen for the run
-//! ([`RunPlan::kind`]). Adding a method means a registry entry and an arm here for each kind it
-//! integrates; every scene offering one of those kinds can then run it, with no list to edit.
-//! A test runs every scene with every method it derives (`every_scene_runs_every_integrator_it_lists`),
-//! so a registry claim without an arm here fails.
+//! The registry builds a method's stepper ([`tumble_integrators::registry::build`]: one
+//! function per [`ProblemKind`], matching every family without a wildcard); this module
+//! supplies the receivers that run it on a scene's model with the plan's driver, step
+//! control, events and observer. No method is named here: a new table of an existing family
+//! (an explicit pair, a Gauss table, a composition) is a registry row and runs on every scene
+//! offering its kind; a new family is a compile error in the builders until each kind says
+//! what it does with it. A scene states which kinds its model offers
+//! ([`crate::SceneInfo::problems`]); the plan carries the kind chosen for the run
+//! ([`RunPlan::kind`]). A test runs every scene with every method it derives
+//! (`every_scene_runs_every_integrator_it_lists`).
 //!
 //! | kind | model | methods |
 //! |---|---|---|
@@ -19,25 +21,19 @@
 //! | [`ProblemKind::Separable`] | [`SeparableHamiltonian`] `H = T(p) + V(q)` on ℝ²ᵈ | symplectic Euler, Störmer–Verlet, and the composition tables named alone (orders 4–10), which compose Störmer–Verlet |
 //! | [`ProblemKind::Split`] | the same Hamiltonian as its drift and kick ([`HamiltonianSplit`]) | Strang splitting |
 //!
-//! A `TABLE:BASE` name ([`registry::composed`]) is the composition table applied to the base
-//! stepper, built here from the table and the base's arm: `lgvi` and `split2` on a rigid body,
-//! `lgvi` on a coupled one, `gauss2` on a first-order ODE.
+//! A `TABLE:BASE` name ([`tumble_integrators::registry::composed`]) is the composition table
+//! applied to the base stepper: `lgvi`, `split2` and `split-exact2` on a rigid body, `lgvi` on a
+//! coupled one, `gauss2` on a first-order ODE.
 
 use nalgebra::SVector;
-use tumble_integrators::registry;
+use tumble_integrators::registry::build::{self, NoStepper, Receive, ReceiveOde};
 use tumble_integrators::rigid::{
-    CoupledLagrangian, CoupledLgvi, CoupledLieGauss, CoupledState, Dmv, EulerEquations,
-    ExactSplitting, ExactStepper, FreeRigidBody, GroupState, Lgvi, PrincipalAxisSplitting,
-    RigidBody, RigidBodyState, cg3, coupled_lgvi4, coupled_lgvi6, coupled_lgvi8, coupled_lgvi10,
-    lgvi4, lgvi6, lgvi8, lgvi10, lie_gauss4, lie_gauss6, lie_gauss8, lie_gauss10, rkmk4,
-    split_exact4, split_exact6, split_exact8, split4, split6, split8,
+    CoupledLagrangian, CoupledState, EulerEquations, FreeRigidBody, GroupState, RigidBody,
+    RigidBodyState,
 };
-use tumble_integrators::tables::{composition, gauss};
 use tumble_integrators::{
-    Composition, Counted, Event, ExplicitRungeKutta, HamiltonianSplit, Observer, Ode, Order,
-    ProblemKind, Report, Restepped, SeparableHamiltonian, Splitting, SplittingStepper, State,
-    Stepper, StormerVerlet, SymplecticEuler, Tolerances, gauss2, gauss4, gauss6, gauss8, gauss10,
-    gauss12,
+    AdaptiveStepper, Counted, DenseOutput, Driver, Event, HamiltonianSplit, Observer, Ode, Order,
+    ProblemKind, Report, Restepped, SeparableHamiltonian, State, Stepper, Tolerances,
 };
 
 use crate::error::SceneError;
@@ -56,14 +52,25 @@ pub struct Outcome {
     pub terminated: bool,
 }
 
-/// The error for a plan whose method has no stepper for `kind` (a registry entry without its
-/// arm here; the dispatch test catches it).
+/// The error for a plan whose method has no stepper for `kind` (validation chooses a kind the
+/// method integrates, so only a scene calling the wrong `run_*` for its plan meets it).
 fn no_stepper(plan: &RunPlan, kind: &str) -> SceneError {
     SceneError::UnsupportedIntegrator {
         scene: String::new(),
         name: plan.integrator().to_string(),
         reason: format!("no stepper for it on a {kind} problem"),
         applicable: String::new(),
+    }
+}
+
+impl From<NoStepper> for SceneError {
+    fn from(e: NoStepper) -> Self {
+        SceneError::UnsupportedIntegrator {
+            scene: String::new(),
+            name: e.method.to_string(),
+            reason: format!("no stepper for it on a {} problem", e.kind.name()),
+            applicable: String::new(),
+        }
     }
 }
 
@@ -79,6 +86,105 @@ fn fixed_step(plan: &RunPlan) -> Result<f64, SceneError> {
                 plan.integrator()
             ),
         }),
+    }
+}
+
+/// Runs an ODE method's stepper over the plan: adaptive with a tolerance, fixed steps (with
+/// events and output times on the stepper's interpolant, or on re-stepping for a method
+/// without one) with a step.
+struct OdeRun<'r, 'e, P, O, const S: usize> {
+    problem: &'r P,
+    y: &'r mut SVector<f64, S>,
+    plan: &'r RunPlan,
+    driver: Driver<'r>,
+    events: &'r mut [Event<'e, SVector<f64, S>>],
+    observer: &'r mut O,
+}
+
+type OdeResult<const S: usize> = Result<Report<SVector<f64, S>>, SceneError>;
+
+impl<P, O, const S: usize> OdeRun<'_, '_, P, O, S>
+where
+    P: Ode<SVector<f64, S>>,
+    O: Observer<SVector<f64, S>>,
+{
+    /// Fixed steps on the stepper's own interpolant, where one is needed.
+    fn fixed<St: DenseOutput<P, State = SVector<f64, S>>>(self, mut stepper: St) -> OdeResult<S> {
+        let h = self.step(false)?;
+        let (driver, y, events, observer) = (self.driver, self.y, self.events, self.observer);
+        Ok(
+            if events.is_empty() && self.plan.times.is_none() && !observer.wants_dense_steps() {
+                driver.run_fixed(&mut stepper, self.problem, y, h, observer)?
+            } else {
+                driver.run_fixed_with_events(&mut stepper, self.problem, y, h, events, observer)?
+            },
+        )
+    }
+
+    /// The plan's fixed step for a method that is (`adaptive`) or is not adaptive; the error
+    /// of a plan that gives the other control.
+    fn step(&self, adaptive: bool) -> Result<f64, SceneError> {
+        match (self.plan.step, adaptive) {
+            (StepControl::Fixed(h), false) => Ok(h),
+            _ => Err(no_stepper(self.plan, "first-order ODE")),
+        }
+    }
+}
+
+impl<P, O, const S: usize> ReceiveOde<P, SVector<f64, S>> for OdeRun<'_, '_, P, O, S>
+where
+    P: Ode<SVector<f64, S>>,
+    O: Observer<SVector<f64, S>>,
+{
+    type Output = OdeResult<S>;
+
+    fn adaptive<St: AdaptiveStepper<P, State = SVector<f64, S>> + DenseOutput<P>>(
+        self,
+        mut stepper: St,
+    ) -> OdeResult<S> {
+        let StepControl::Tolerance(tol) = self.plan.step else {
+            return Err(no_stepper(self.plan, "first-order ODE"));
+        };
+        let tolerances = Tolerances::new(tol, tol)?;
+        Ok(self.driver.run_adaptive(
+            &mut stepper,
+            self.problem,
+            self.y,
+            &tolerances,
+            self.events,
+            self.observer,
+        )?)
+    }
+
+    fn interpolating<St: DenseOutput<P, State = SVector<f64, S>>>(
+        self,
+        stepper: St,
+    ) -> OdeResult<S> {
+        self.fixed(stepper)
+    }
+
+    fn plain<St: Stepper<P, State = SVector<f64, S>> + Clone>(
+        self,
+        mut stepper: St,
+    ) -> OdeResult<S> {
+        // Dense output, where asked for, by re-stepping (no interpolant of its own).
+        let h = self.step(false)?;
+        if self.events.is_empty() && self.plan.times.is_none() && !self.observer.wants_dense_steps()
+        {
+            Ok(self
+                .driver
+                .run_fixed(&mut stepper, self.problem, self.y, h, self.observer)?)
+        } else {
+            let mut dense = Restepped::new(stepper, interpolation_order(self.plan));
+            Ok(self.driver.run_fixed_with_events(
+                &mut dense,
+                self.problem,
+                self.y,
+                h,
+                self.events,
+                self.observer,
+            )?)
+        }
     }
 }
 
@@ -98,77 +204,51 @@ where
     P: Ode<SVector<f64, S>>,
     O: Observer<SVector<f64, S>>,
 {
-    let counted = tumble_integrators::Counted::new(ByRef(problem));
-    let driver = plan.driver()?;
-    let name = plan.integrator();
-    let report = match plan.step {
-        StepControl::Tolerance(tol) => {
-            let tolerances = Tolerances::new(tol, tol)?;
-            macro_rules! adaptive {
-                ($stepper:expr) => {{
-                    let mut stepper = $stepper;
-                    driver.run_adaptive(&mut stepper, &counted, y, &tolerances, events, observer)?
-                }};
-            }
-            match name {
-                "dp5" => adaptive!(ExplicitRungeKutta::dp5().stepper(y)),
-                "dop853" => adaptive!(ExplicitRungeKutta::dop853().stepper(y)),
-                "tsit5" => adaptive!(ExplicitRungeKutta::tsit5().stepper(y)),
-                "vern6" => adaptive!(ExplicitRungeKutta::vern6().stepper(y)),
-                "vern7" => adaptive!(ExplicitRungeKutta::vern7().stepper(y)),
-                "vern8" => adaptive!(ExplicitRungeKutta::vern8().stepper(y)),
-                "vern9" => adaptive!(ExplicitRungeKutta::vern9().stepper(y)),
-                _ => return Err(no_stepper(plan, "first-order ODE")),
-            }
-        }
-        StepControl::Fixed(h) => {
-            macro_rules! fixed {
-                ($stepper:expr) => {{
-                    let mut stepper = $stepper;
-                    if events.is_empty() && plan.times.is_none() && !observer.wants_dense_steps() {
-                        driver.run_fixed(&mut stepper, &counted, y, h, observer)?
-                    } else {
-                        driver.run_fixed_with_events(
-                            &mut stepper,
-                            &counted,
-                            y,
-                            h,
-                            events,
-                            observer,
-                        )?
-                    }
-                }};
-            }
-            match (name, registry::composed(name)) {
-                (_, Some((table, base))) if base.name == "gauss2" => {
-                    // Dense output, where asked for, by re-stepping (a composition has no
-                    // interpolant of its own).
-                    let mut stepper = Composition::new(table, gauss2().stepper(y));
-                    if events.is_empty() && plan.times.is_none() && !observer.wants_dense_steps() {
-                        driver.run_fixed(&mut stepper, &counted, y, h, observer)?
-                    } else {
-                        let mut dense = Restepped::new(stepper, interpolation_order(plan));
-                        driver
-                            .run_fixed_with_events(&mut dense, &counted, y, h, events, observer)?
-                    }
-                }
-                ("rk4", _) => fixed!(ExplicitRungeKutta::rk4().stepper(y)),
-                ("gauss2", _) => fixed!(gauss2().stepper(y)),
-                ("gauss4", _) => fixed!(gauss4().stepper(y)),
-                ("gauss6", _) => fixed!(gauss6().stepper(y)),
-                ("gauss8", _) => fixed!(gauss8().stepper(y)),
-                ("gauss10", _) => fixed!(gauss10().stepper(y)),
-                ("gauss12", _) => fixed!(gauss12().stepper(y)),
-                _ => return Err(no_stepper(plan, "first-order ODE")),
-            }
-        }
+    let counted = Counted::new(ByRef(problem));
+    let y0 = *y;
+    let run = OdeRun {
+        problem: &counted,
+        y,
+        plan,
+        driver: plan.driver()?,
+        events,
+        observer,
     };
+    let report = build::ode(plan.method, &y0, run)??;
     Ok(Outcome {
         t: report.t,
         steps: report.steps,
         evaluations: counted.evaluations().rhs,
         terminated: matches!(report.status, tumble_integrators::Status::Terminated(_)),
     })
+}
+
+/// Runs a fixed-step stepper on `problem` from `state` over the plan ([`run_fixed`]).
+struct FixedRun<'r, P: ?Sized, S, O> {
+    problem: &'r P,
+    state: &'r mut S,
+    plan: &'r RunPlan,
+    observer: &'r mut O,
+}
+
+impl<P: ?Sized, S: State, O: Observer<S>> Receive<P, S> for FixedRun<'_, P, S, O> {
+    type Output = Result<Report<S>, SceneError>;
+    fn receive<St: Stepper<P, State = S> + Clone>(self, stepper: St) -> Self::Output {
+        run_fixed(stepper, self.problem, self.state, self.plan, self.observer)
+    }
+}
+
+/// Runs a Lie-group stepper on `GroupState<3>` as a stepper of [`RigidBodyState`]
+/// ([`OnRigidBody`]).
+struct FixedRunOnGroup<'r, P: ?Sized, O>(FixedRun<'r, P, RigidBodyState, O>);
+
+impl<P: ?Sized, O: Observer<RigidBodyState>> Receive<P, GroupState<3>>
+    for FixedRunOnGroup<'_, P, O>
+{
+    type Output = Result<Report<RigidBodyState>, SceneError>;
+    fn receive<St: Stepper<P, State = GroupState<3>> + Clone>(self, stepper: St) -> Self::Output {
+        self.0.receive(OnRigidBody(stepper))
+    }
 }
 
 /// Integrates a rigid body on SO(3) × ℝ³ ([`ProblemKind::RigidBody`],
@@ -188,57 +268,41 @@ where
     B: RigidBody + Copy,
     O: Observer<RigidBodyState>,
 {
-    macro_rules! on {
-        ($problem:expr, $stepper:expr) => {{
-            let report = run_fixed($stepper, $problem, state, plan, observer)?;
-            (report.t, report.steps)
-        }};
-    }
-    let (t, steps) = if let Some((table, base)) = registry::composed(plan.integrator()) {
-        match (plan.kind, base.name) {
-            (ProblemKind::RigidBody, "lgvi") => on!(body, Composition::new(table, Lgvi::new())),
-            (ProblemKind::RigidBody, "split2") => {
-                on!(body, Composition::new(table, PrincipalAxisSplitting::new()))
-            }
-            (ProblemKind::RigidBody, "split-exact2") => {
-                on!(body, Composition::new(table, ExactSplitting::new()))
-            }
-            (kind, _) => return Err(no_stepper(plan, kind.name())),
+    let report = match (plan.kind, free) {
+        (ProblemKind::RigidBody, _) => {
+            let run = FixedRun {
+                problem: body,
+                state,
+                plan,
+                observer,
+            };
+            build::rigid_body(plan.method, run)??
         }
-    } else {
-        match (plan.kind, plan.integrator(), free) {
-            (ProblemKind::RigidBody, "lgvi", _) => on!(body, Lgvi::new()),
-            (ProblemKind::RigidBody, "lgvi4", _) => on!(body, lgvi4()),
-            (ProblemKind::RigidBody, "lgvi6", _) => on!(body, lgvi6()),
-            (ProblemKind::RigidBody, "lgvi8", _) => on!(body, lgvi8()),
-            (ProblemKind::RigidBody, "lgvi10", _) => on!(body, lgvi10()),
-            (ProblemKind::RigidBody, "lie-gauss4", _) => on!(body, lie_gauss4()),
-            (ProblemKind::RigidBody, "lie-gauss6", _) => on!(body, lie_gauss6()),
-            (ProblemKind::RigidBody, "lie-gauss8", _) => on!(body, lie_gauss8()),
-            (ProblemKind::RigidBody, "lie-gauss10", _) => on!(body, lie_gauss10()),
-            (ProblemKind::RigidBody, "split2", _) => on!(body, PrincipalAxisSplitting::new()),
-            (ProblemKind::RigidBody, "split4", _) => on!(body, split4()),
-            (ProblemKind::RigidBody, "split6", _) => on!(body, split6()),
-            (ProblemKind::RigidBody, "split8", _) => on!(body, split8()),
-            (ProblemKind::RigidBody, "split-exact2", _) => on!(body, ExactSplitting::new()),
-            (ProblemKind::RigidBody, "split-exact4", _) => on!(body, split_exact4()),
-            (ProblemKind::RigidBody, "split-exact6", _) => on!(body, split_exact6()),
-            (ProblemKind::RigidBody, "split-exact8", _) => on!(body, split_exact8()),
-            (ProblemKind::FreeRigidBody, "dmv", Some(free)) => on!(free, Dmv::new()),
-            (ProblemKind::FreeRigidBody, "exact", Some(free)) => on!(free, ExactStepper::new()),
-            (ProblemKind::LieVectorField, "rkmk4", _) => {
-                on!(&EulerEquations(*body), OnRigidBody(rkmk4::<3>()))
-            }
-            (ProblemKind::LieVectorField, "cg3", _) => {
-                on!(&EulerEquations(*body), OnRigidBody(cg3::<3>()))
-            }
-            (kind, _, _) => return Err(no_stepper(plan, kind.name())),
+        (ProblemKind::FreeRigidBody, Some(free)) => {
+            let run = FixedRun {
+                problem: free,
+                state,
+                plan,
+                observer,
+            };
+            build::free_rigid_body(plan.method, run)??
         }
+        (ProblemKind::LieVectorField, _) => {
+            let field = EulerEquations(*body);
+            let run = FixedRunOnGroup(FixedRun {
+                problem: &field,
+                state,
+                plan,
+                observer,
+            });
+            build::lie_vector_field::<EulerEquations<B>, _, 3>(plan.method, run)??
+        }
+        (kind, _) => return Err(no_stepper(plan, kind.name())),
     };
     Ok(Outcome {
-        t,
-        steps,
-        evaluations: steps,
+        t: report.t,
+        steps: report.steps,
+        evaluations: report.steps,
         terminated: false,
     })
 }
@@ -258,35 +322,16 @@ where
     L: CoupledLagrangian<N>,
     O: Observer<CoupledState<N>>,
 {
-    macro_rules! on {
-        ($stepper:expr) => {
-            run_fixed($stepper, model, state, plan, observer)?
-        };
+    if plan.kind != ProblemKind::CoupledRigidBody {
+        return Err(no_stepper(plan, plan.kind.name()));
     }
-    let composed = registry::composed(plan.integrator()).map(|(table, base)| (table, base.name));
-    let report = match (plan.kind, plan.integrator(), composed) {
-        (ProblemKind::CoupledRigidBody, _, Some((table, "lgvi"))) => {
-            on!(Composition::new(table, CoupledLgvi::<N>::new()))
-        }
-        (ProblemKind::CoupledRigidBody, "lgvi", _) => on!(CoupledLgvi::<N>::new()),
-        (ProblemKind::CoupledRigidBody, "lgvi4", _) => on!(coupled_lgvi4::<N>()),
-        (ProblemKind::CoupledRigidBody, "lgvi6", _) => on!(coupled_lgvi6::<N>()),
-        (ProblemKind::CoupledRigidBody, "lgvi8", _) => on!(coupled_lgvi8::<N>()),
-        (ProblemKind::CoupledRigidBody, "lgvi10", _) => on!(coupled_lgvi10::<N>()),
-        (ProblemKind::CoupledRigidBody, "lie-gauss4", _) => {
-            on!(CoupledLieGauss::<2, N>::new(&gauss::GAUSS4))
-        }
-        (ProblemKind::CoupledRigidBody, "lie-gauss6", _) => {
-            on!(CoupledLieGauss::<3, N>::new(&gauss::GAUSS6))
-        }
-        (ProblemKind::CoupledRigidBody, "lie-gauss8", _) => {
-            on!(CoupledLieGauss::<4, N>::new(&gauss::GAUSS8))
-        }
-        (ProblemKind::CoupledRigidBody, "lie-gauss10", _) => {
-            on!(CoupledLieGauss::<5, N>::new(&gauss::GAUSS10))
-        }
-        (kind, _, _) => return Err(no_stepper(plan, kind.name())),
+    let run = FixedRun {
+        problem: model,
+        state,
+        plan,
+        observer,
     };
+    let report = build::coupled::<L, _, N>(plan.method, run)??;
     Ok(Outcome {
         t: report.t,
         steps: report.steps,
@@ -315,49 +360,28 @@ where
     H: SeparableHamiltonian,
     O: Observer<SVector<f64, S>>,
 {
-    let name = plan.integrator();
+    let y0 = *y;
     let (report, evaluations) = match plan.kind {
         ProblemKind::Separable => {
             let counted = Counted::new(model);
-            let table = composition::ALL.into_iter().find(|t| t.name == name);
-            let report = match (name, table) {
-                ("symplectic-euler", _) => run_fixed(
-                    SymplecticEuler::default().stepper(y),
-                    &counted,
-                    y,
-                    plan,
-                    observer,
-                )?,
-                ("verlet", _) => run_fixed(
-                    StormerVerlet::default().stepper(y),
-                    &counted,
-                    y,
-                    plan,
-                    observer,
-                )?,
-                (_, Some(table)) => run_fixed(
-                    Composition::new(table, StormerVerlet::default().stepper(y)),
-                    &counted,
-                    y,
-                    plan,
-                    observer,
-                )?,
-                _ => return Err(no_stepper(plan, "separable Hamiltonian")),
+            let run = FixedRun {
+                problem: &counted,
+                state: y,
+                plan,
+                observer,
             };
+            let report = build::separable(plan.method, &y0, run)??;
             (report, counted.evaluations().potential_gradients)
         }
         ProblemKind::Split => {
             let counted = Counted::new(HamiltonianSplit::new(model));
-            let report = match name {
-                "strang" => run_fixed(
-                    SplittingStepper::new(Splitting::Strang),
-                    &counted,
-                    y,
-                    plan,
-                    observer,
-                )?,
-                _ => return Err(no_stepper(plan, "split")),
+            let run = FixedRun {
+                problem: &counted,
+                state: y,
+                plan,
+                observer,
             };
+            let report = build::split(plan.method, run)??;
             (report, counted.evaluations().flows)
         }
         kind => return Err(no_stepper(plan, kind.name())),

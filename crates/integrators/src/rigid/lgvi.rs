@@ -45,7 +45,7 @@
 //!
 //! Symplectic, symmetric (the discrete Lagrangian is self-adjoint), order 2, so it composes to
 //! any even order through [`crate::Composition`]; [`lgvi4`], [`lgvi6`], [`lgvi8`] and
-//! [`lgvi10`] are the registered compositions ([`LGVI_COMPOSITIONS`] names their tables). For a torque-free body
+//! [`lgvi10`] are the registered compositions (their registry rows, `registry::ROWS`, hold their tables). For a torque-free body
 //! `R_{k+1} Π_{k+1} = R_k F_k F_kᵀ Π_k = R_k Π_k`: the spatial angular momentum is conserved,
 //! and so are `|Π|` and the energy (for `V = 0` the map is the discrete Moser–Veselov algorithm,
 //! which [`crate::rigid::Dmv`] computes by an independent route).
@@ -79,21 +79,7 @@ use crate::rigid::exact::FreeRigidBody;
 use crate::rigid::problem::RigidBody;
 use crate::rigid::state::{RigidBodyState, RigidCarry};
 use crate::stepper::Stepper;
-use crate::tables::CompositionTable;
 use crate::tables::composition::{KAHAN_LI6, KAHAN_LI8, MCLACHLAN4, SOFRONIOU_SPALETTA10};
-
-/// The registered compositions of the LGVI (and of the coupled LGVI,
-/// [`crate::rigid::coupled_lgvi4`] …): registry name and coefficient table, in order.
-///
-/// The same tables as the principal-axis splittings `split4` … `split8`: McLachlan's 5-stage
-/// order 4 (built for a small error constant), Kahan & Li's 9-stage order 6 and 17-stage
-/// order 8, and Sofroniou & Spaletta's 35-stage order 10.
-pub const LGVI_COMPOSITIONS: [(&str, &CompositionTable); 4] = [
-    ("lgvi4", &MCLACHLAN4),
-    ("lgvi6", &KAHAN_LI6),
-    ("lgvi8", &KAHAN_LI8),
-    ("lgvi10", &SOFRONIOU_SPALETTA10),
-];
 
 /// `lgvi4`: [`Lgvi`] composed with McLachlan's 5-stage order-4 coefficients.
 #[must_use]

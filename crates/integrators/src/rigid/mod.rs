@@ -70,10 +70,9 @@ pub use coupled::{
 pub use diagnostics::{CoupledMonitor, Deviations, Initial, RigidBodyMonitor};
 pub use dmv::Dmv;
 pub use exact::{ExactFlow, FreeRigidBody};
-pub use lgvi::{LGVI_COMPOSITIONS, Lgvi, lgvi4, lgvi6, lgvi8, lgvi10};
+pub use lgvi::{Lgvi, lgvi4, lgvi6, lgvi8, lgvi10};
 pub use lie_gauss::{
-    CoupledLieGauss, LIE_GAUSS_METHODS, LieGauss, lie_gauss4, lie_gauss6, lie_gauss8, lie_gauss10,
-    lie_gauss12,
+    CoupledLieGauss, LieGauss, lie_gauss4, lie_gauss6, lie_gauss8, lie_gauss10, lie_gauss12,
 };
 pub use lie_rk::{CROUCH_GROSSMAN3, CrouchGrossman, LieRkTableau, RKMK4, Rkmk, cg3, rkmk4};
 pub use problem::{EulerEquations, HeavyTop, LieVectorField, RigidBody};

@@ -9,9 +9,11 @@
 //! global error / tol are printed (DOP853 ≈ 0.5–5, DP5 ≈ 1–70 over 1e-6 … 1e-12).
 
 use nalgebra::SVector;
+use tumble_integrators::registry::{self, build, build::ReceiveOde};
 use tumble_integrators::verification::{RigidBodyEuler, fit_power_law, max_abs_diff};
 use tumble_integrators::{
-    AdaptiveStepper, DenseOutput, Driver, ExplicitRungeKutta, NoObserver, Tolerances, gauss12,
+    AdaptiveStepper, DenseOutput, Driver, ExplicitRungeKutta, NoObserver, Stepper, Tolerances,
+    gauss12,
 };
 
 type V3 = SVector<f64, 3>;
@@ -102,42 +104,39 @@ fn dop853_and_dp5_meet_tolerances_on_the_forced_rigid_body() {
     check(true, 10.0);
 }
 
+/// Runs the adaptive stepper it receives ([`adaptive`]).
+struct Adaptive<'a> {
+    problem: &'a RigidBodyEuler,
+    t_end: f64,
+    tol: f64,
+}
+
+impl ReceiveOde<RigidBodyEuler, V3> for Adaptive<'_> {
+    type Output = (V3, u64);
+    fn adaptive<St>(self, stepper: St) -> (V3, u64)
+    where
+        St: AdaptiveStepper<RigidBodyEuler, State = V3> + DenseOutput<RigidBodyEuler>,
+    {
+        adaptive(stepper, self.problem, self.t_end, self.tol)
+    }
+    fn interpolating<St: DenseOutput<RigidBodyEuler, State = V3>>(self, _: St) -> (V3, u64) {
+        panic!("not an adaptive method")
+    }
+    fn plain<St: Stepper<RigidBodyEuler, State = V3> + Clone>(self, _: St) -> (V3, u64) {
+        panic!("not an adaptive method")
+    }
+}
+
 /// `name`'s final state and accepted steps on `problem` at `rtol = atol = tol`.
 fn adaptive_named(name: &str, problem: &RigidBodyEuler, t_end: f64, tol: f64) -> (V3, u64) {
     let y0 = V3::from(RigidBodyEuler::INITIAL);
-    match name {
-        "tsit5" => adaptive(
-            ExplicitRungeKutta::tsit5().stepper(&y0),
-            problem,
-            t_end,
-            tol,
-        ),
-        "vern6" => adaptive(
-            ExplicitRungeKutta::vern6().stepper(&y0),
-            problem,
-            t_end,
-            tol,
-        ),
-        "vern7" => adaptive(
-            ExplicitRungeKutta::vern7().stepper(&y0),
-            problem,
-            t_end,
-            tol,
-        ),
-        "vern8" => adaptive(
-            ExplicitRungeKutta::vern8().stepper(&y0),
-            problem,
-            t_end,
-            tol,
-        ),
-        "vern9" => adaptive(
-            ExplicitRungeKutta::vern9().stepper(&y0),
-            problem,
-            t_end,
-            tol,
-        ),
-        other => panic!("no adaptive method {other}"),
-    }
+    let method = registry::find(name).unwrap();
+    let run = Adaptive {
+        problem,
+        t_end,
+        tol,
+    };
+    build::ode(method, &y0, run).unwrap()
 }
 
 /// Tsitouras 5(4) and Verner's 6(5) … 9(8) at tol = 1e-6 … 1e-12: every global error is below

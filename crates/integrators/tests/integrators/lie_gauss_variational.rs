@@ -10,12 +10,11 @@
 //!   `cargo bench --bench invariants`.)
 
 use nalgebra::Vector3;
+use tumble_integrators::Error;
 use tumble_integrators::rigid::{
-    CoupledLieGauss, CoupledState, FreeRigidBody, RigidBody, RigidBodyState, coupled_energy,
+    CoupledLieGauss, FreeRigidBody, RigidBody, RigidBodyState, coupled_energy,
 };
-use tumble_integrators::tables::GaussTableau;
-use tumble_integrators::tables::gauss::{GAUSS4, GAUSS6, GAUSS8, GAUSS10};
-use tumble_integrators::{Error, NoObserver};
+use tumble_integrators::tables::gauss::GAUSS6;
 
 use crate::rigid_support::*;
 
@@ -72,23 +71,6 @@ fn lie_gauss_methods_reach_orders_four_to_twelve_on_the_heavy_top_against_gauss_
     });
 }
 
-fn hoop_run<const S: usize>(
-    table: &'static GaussTableau<S>,
-    model: &BeadOnHoop,
-    s0: &CoupledState<1>,
-    t_end: f64,
-    h: f64,
-) -> Result<CoupledState<1>, Error> {
-    run(
-        &mut CoupledLieGauss::<S, 1>::new(table),
-        model,
-        *s0,
-        t_end,
-        h,
-        &mut NoObserver,
-    )
-}
-
 #[test]
 fn lie_gauss_methods_reach_orders_four_to_ten_on_the_bead_on_a_hoop() {
     let model = BeadOnHoop::standard();
@@ -103,12 +85,7 @@ fn lie_gauss_methods_reach_orders_four_to_ten_on_the_bead_on_a_hoop() {
         ("lie-gauss10", 10.0, 27.0, 6, R4),
     ];
     check_all(&plans, t_end, |name, h| {
-        let s = match name {
-            "lie-gauss4" => hoop_run(&GAUSS4, &model, &s0, t_end, h)?,
-            "lie-gauss6" => hoop_run(&GAUSS6, &model, &s0, t_end, h)?,
-            "lie-gauss8" => hoop_run(&GAUSS8, &model, &s0, t_end, h)?,
-            _ => hoop_run(&GAUSS10, &model, &s0, t_end, h)?,
-        };
+        let s = solve_coupled(name, &model, &s0, t_end, h)?;
         Ok(coupled_error(&s, &reference))
     });
 }

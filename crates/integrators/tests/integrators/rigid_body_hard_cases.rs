@@ -6,11 +6,9 @@
 //!   limit, nearly symmetric): every method against Gauss–Legendre s = 6.
 
 use nalgebra::{Matrix3, Vector3};
-use tumble_integrators::Stepper;
-use tumble_integrators::rigid::{
-    Dmv, EulerEquations, ExactStepper, FreeRigidBody, GroupState, Lgvi, PrincipalAxisSplitting,
-    RigidBodyState, cg3, rkmk4, split4, split6, split8,
-};
+use tumble_integrators::registry::{self, build, build::Receive};
+use tumble_integrators::rigid::{EulerEquations, FreeRigidBody, GroupState, RigidBodyState};
+use tumble_integrators::{ProblemKind, State, Stepper};
 use tumble_kinematics::so3::exp;
 
 use crate::rigid_support::*;
@@ -36,14 +34,15 @@ fn t_handle() -> FreeRigidBody {
 /// First time `mx` of the state changes sign from positive: the step over which it happens is
 /// found by stepping, the time within it by bisection on the step size of the method's own
 /// step from the state at its start (the method's continuous extension).
-fn flip_time<P: ?Sized, St: Stepper<P>>(
-    make: &dyn Fn() -> St,
+fn flip_time<P: ?Sized, St: Stepper<P> + Clone>(
+    fresh: &St,
     problem: &P,
     s0: St::State,
     mx: &dyn Fn(&St::State) -> f64,
     h: f64,
     t_max: f64,
 ) -> f64 {
+    let make = || fresh.clone();
     let mut stepper = make();
     let mut s = s0;
     let mut k = 0u64;
@@ -69,6 +68,22 @@ fn flip_time<P: ?Sized, St: Stepper<P>>(
         k += 1;
     }
     f64::NAN
+}
+
+/// Runs [`flip_time`] with the stepper it receives.
+struct Flip<'a, P: ?Sized, S> {
+    problem: &'a P,
+    s0: S,
+    mx: &'a dyn Fn(&S) -> f64,
+    h: f64,
+    t_max: f64,
+}
+
+impl<P: ?Sized, S: State> Receive<P, S> for Flip<'_, P, S> {
+    type Output = f64;
+    fn receive<St: Stepper<P, State = S> + Clone>(self, stepper: St) -> f64 {
+        flip_time(&stepper, self.problem, self.s0, self.mx, self.h, self.t_max)
+    }
 }
 
 #[test]
@@ -103,18 +118,29 @@ fn t_handle_flip_time_of_every_method_matches_the_exact_one_within_its_error() {
     let g0 = GroupState::from(s0);
     let t_max = 2.0 * exact;
     let flip = |name: &str, h: f64| -> f64 {
-        match name {
-            "lgvi" => flip_time(&Lgvi::default, &body, s0, &mx, h, t_max),
-            "dmv" => flip_time(&Dmv::new, &body, s0, &mx, h, t_max),
-            "split2" => flip_time(&PrincipalAxisSplitting::new, &body, s0, &mx, h, t_max),
-            "split4" => flip_time(&split4, &body, s0, &mx, h, t_max),
-            "split6" => flip_time(&split6, &body, s0, &mx, h, t_max),
-            "split8" => flip_time(&split8, &body, s0, &mx, h, t_max),
-            "exact" => flip_time(&ExactStepper::new, &body, s0, &mx, h, t_max),
-            "rkmk4" => flip_time(&rkmk4::<3>, &field, g0, &gx, h, t_max),
-            "cg3" => flip_time(&cg3::<3>, &field, g0, &gx, h, t_max),
-            other => panic!("{other}"),
+        let method = registry::find(name).unwrap();
+        let on_body = Flip {
+            problem: &body,
+            s0,
+            mx: &mx,
+            h,
+            t_max,
+        };
+        match method.problems[0] {
+            ProblemKind::LieVectorField => {
+                let on_field = Flip {
+                    problem: &field,
+                    s0: g0,
+                    mx: &gx,
+                    h,
+                    t_max,
+                };
+                build::lie_vector_field::<_, _, 3>(method, on_field)
+            }
+            ProblemKind::FreeRigidBody => build::free_rigid_body(method, on_body),
+            _ => build::rigid_body(method, on_body),
         }
+        .unwrap()
     };
     // The step: 1/40 of a turn.
     let h = 0.5 / 20.0;

@@ -1,12 +1,12 @@
 //! Shared helpers: run any registry method by name on the exact-solution problems.
 
 use nalgebra::SVector;
-use tumble_integrators::tables::composition::ALL;
+use tumble_integrators::registry::build::{self, Receive, ReceiveOde};
+use tumble_integrators::registry::find;
 use tumble_integrators::verification::{HarmonicOscillator, Kepler, Pendulum, max_abs_diff};
 use tumble_integrators::{
-    Composition, Driver, Error, ExplicitRungeKutta, HamiltonianOde, NoObserver,
-    SeparableHamiltonian, Stepper, StormerVerlet, SymplecticEuler, gauss2, gauss4, gauss6, gauss8,
-    gauss10, gauss12,
+    AdaptiveStepper, DenseOutput, Driver, Error, HamiltonianOde, NoObserver, Ode, ProblemKind,
+    SeparableHamiltonian, Stepper,
 };
 
 /// The three problems with exact solutions.
@@ -34,23 +34,61 @@ impl Exact {
     }
 }
 
-fn run_fixed<H, St, const N: usize>(
-    problem: &H,
-    stepper: &mut St,
+/// Runs the stepper it receives with fixed steps `h` from `y0` over `[0, t_end]`; the final
+/// state.
+struct Fixed<'a, P, const N: usize> {
+    problem: &'a P,
     y0: [f64; N],
     t_end: f64,
     h: f64,
-) -> Result<SVector<f64, N>, Error>
-where
-    H: ?Sized,
-    St: Stepper<H, State = SVector<f64, N>>,
-{
-    let mut y = SVector::<f64, N>::from(y0);
-    Driver::new(0.0, t_end)?.run_fixed(stepper, problem, &mut y, h, &mut NoObserver)?;
-    Ok(y)
 }
 
-/// Final state of method `name` on a separable Hamiltonian from `y0`.
+impl<P, const N: usize> Fixed<'_, P, N> {
+    fn run<St: Stepper<P, State = SVector<f64, N>>>(
+        self,
+        mut stepper: St,
+    ) -> Result<SVector<f64, N>, Error> {
+        let mut y = SVector::<f64, N>::from(self.y0);
+        Driver::new(0.0, self.t_end)?.run_fixed(
+            &mut stepper,
+            self.problem,
+            &mut y,
+            self.h,
+            &mut NoObserver,
+        )?;
+        Ok(y)
+    }
+}
+
+impl<P, const N: usize> Receive<P, SVector<f64, N>> for Fixed<'_, P, N> {
+    type Output = Result<SVector<f64, N>, Error>;
+    fn receive<St: Stepper<P, State = SVector<f64, N>> + Clone>(self, stepper: St) -> Self::Output {
+        self.run(stepper)
+    }
+}
+
+impl<P: Ode<SVector<f64, N>>, const N: usize> ReceiveOde<P, SVector<f64, N>> for Fixed<'_, P, N> {
+    type Output = Result<SVector<f64, N>, Error>;
+    fn adaptive<St: AdaptiveStepper<P, State = SVector<f64, N>> + DenseOutput<P>>(
+        self,
+        stepper: St,
+    ) -> Self::Output {
+        self.run(stepper)
+    }
+    fn interpolating<St: DenseOutput<P, State = SVector<f64, N>>>(
+        self,
+        stepper: St,
+    ) -> Self::Output {
+        self.run(stepper)
+    }
+    fn plain<St: Stepper<P, State = SVector<f64, N>> + Clone>(self, stepper: St) -> Self::Output {
+        self.run(stepper)
+    }
+}
+
+/// Final state of the registry method `name` on a separable Hamiltonian from `y0`, with fixed
+/// steps: as a first-order ODE `y' = (∂H/∂p, −∂H/∂q)` for the methods that integrate one, as
+/// the Hamiltonian itself for the others (the registry builds either stepper).
 pub fn solve_hamiltonian<H: SeparableHamiltonian, const N: usize>(
     name: &str,
     hamiltonian: H,
@@ -58,93 +96,25 @@ pub fn solve_hamiltonian<H: SeparableHamiltonian, const N: usize>(
     t_end: f64,
     h: f64,
 ) -> Result<SVector<f64, N>, Error> {
+    let method = find(name)?;
     let y = SVector::<f64, N>::from(y0);
-    let ode = HamiltonianOde(&hamiltonian);
-    match name {
-        "rk4" => run_fixed(
-            &ode,
-            &mut ExplicitRungeKutta::rk4().stepper(&y),
+    if method.problems.contains(&ProblemKind::Ode) {
+        let ode = HamiltonianOde(&hamiltonian);
+        let run = Fixed {
+            problem: &ode,
             y0,
             t_end,
             h,
-        ),
-        "dp5" => run_fixed(
-            &ode,
-            &mut ExplicitRungeKutta::dp5().stepper(&y),
+        };
+        build::ode(method, &y, run)?
+    } else {
+        let run = Fixed {
+            problem: &hamiltonian,
             y0,
             t_end,
             h,
-        ),
-        "dop853" => run_fixed(
-            &ode,
-            &mut ExplicitRungeKutta::dop853().stepper(&y),
-            y0,
-            t_end,
-            h,
-        ),
-        "tsit5" => run_fixed(
-            &ode,
-            &mut ExplicitRungeKutta::tsit5().stepper(&y),
-            y0,
-            t_end,
-            h,
-        ),
-        "vern6" => run_fixed(
-            &ode,
-            &mut ExplicitRungeKutta::vern6().stepper(&y),
-            y0,
-            t_end,
-            h,
-        ),
-        "vern7" => run_fixed(
-            &ode,
-            &mut ExplicitRungeKutta::vern7().stepper(&y),
-            y0,
-            t_end,
-            h,
-        ),
-        "vern8" => run_fixed(
-            &ode,
-            &mut ExplicitRungeKutta::vern8().stepper(&y),
-            y0,
-            t_end,
-            h,
-        ),
-        "vern9" => run_fixed(
-            &ode,
-            &mut ExplicitRungeKutta::vern9().stepper(&y),
-            y0,
-            t_end,
-            h,
-        ),
-        "symplectic-euler" => run_fixed(
-            &hamiltonian,
-            &mut SymplecticEuler::default().stepper(&y),
-            y0,
-            t_end,
-            h,
-        ),
-        "verlet" => run_fixed(
-            &hamiltonian,
-            &mut StormerVerlet::default().stepper(&y),
-            y0,
-            t_end,
-            h,
-        ),
-        "gauss2" => run_fixed(&ode, &mut gauss2().stepper(&y), y0, t_end, h),
-        "gauss4" => run_fixed(&ode, &mut gauss4().stepper(&y), y0, t_end, h),
-        "gauss6" => run_fixed(&ode, &mut gauss6().stepper(&y), y0, t_end, h),
-        "gauss8" => run_fixed(&ode, &mut gauss8().stepper(&y), y0, t_end, h),
-        "gauss10" => run_fixed(&ode, &mut gauss10().stepper(&y), y0, t_end, h),
-        "gauss12" => run_fixed(&ode, &mut gauss12().stepper(&y), y0, t_end, h),
-        other => {
-            let table = ALL
-                .iter()
-                .find(|t| t.name == other)
-                .ok_or_else(|| Error::UnknownMethod(other.to_owned()))?;
-            let mut stepper = Composition::new(table, StormerVerlet::default().stepper(&y));
-            run_fixed(&hamiltonian, &mut stepper, y0, t_end, h)
-        }
+        };
+        build::separable(method, &y, run)?
     }
 }
 
