@@ -491,7 +491,7 @@ pub fn estimate(
         plan,
         companion,
         rows,
-        fixed_rows.then(|| block.saturating_mul(2)),
+        fixed_rows.then_some(block.saturating_mul(2)),
         budget,
     )?;
     let expected_ratio = match (method.order, adaptive) {
@@ -510,7 +510,11 @@ pub fn estimate(
             plan,
             c,
             rows,
-            fixed_rows.then(|| if block % 2 == 0 { block / 2 } else { block }),
+            fixed_rows.then_some(if block.is_multiple_of(2) {
+                block / 2
+            } else {
+                block
+            }),
             budget,
         )
     });

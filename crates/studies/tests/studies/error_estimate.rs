@@ -5,9 +5,9 @@
 //! settings per scene the estimate is within a factor 10 of the true error or above it, and a
 //! trustworthy estimate of an error above round-off is within a factor 10 of it.
 
+use tumble_scenarios::RunOptions;
 use tumble_scenarios::scene::{Discard, FinalState, StepControl};
 use tumble_scenarios::scenes::find;
-use tumble_scenarios::{RunOptions, Scene};
 use tumble_studies::error_estimate::{
     ErrorEstimate, Tap, Trust, WrittenRows, estimate, final_difference,
 };
