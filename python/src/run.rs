@@ -7,6 +7,7 @@ use tumble_integrators::Flow;
 use tumble_scenarios::scene::{CancelFlag, check_horizon};
 use tumble_scenarios::{Recorder, SceneError, StepControl, scenes};
 use tumble_studies::catalog;
+use tumble_studies::error_estimate::{self, ErrorEstimate, Tap, WrittenRows};
 use tumble_studies::simulation::{
     Interruptible, LoadedScene, Naming, ParamOverride, RunRequest, failure_message, flag_words,
     load_scene, number,
@@ -94,7 +95,7 @@ fn step(dt: Option<f64>, tol: Option<f64>) -> PyResult<Option<StepControl>> {
 /// Runs a scene (see the Python docstring of `tumble.simulate`).
 #[pyfunction]
 #[pyo3(signature = (scene, params=None, integrator=None, dt=None, tol=None, t_end=None, at=None,
-    every=None, output_dt=None, max_steps=1_000_000_000, allow_coarse_step=false))]
+    every=None, output_dt=None, max_steps=1_000_000_000, allow_coarse_step=false, check=true))]
 pub(crate) fn simulate<'py>(
     py: Python<'py>,
     scene: &str,
@@ -108,6 +109,7 @@ pub(crate) fn simulate<'py>(
     output_dt: Option<f64>,
     max_steps: u64,
     allow_coarse_step: bool,
+    check: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
     if usize::from(every.is_some()) + usize::from(at.is_some()) + usize::from(output_dt.is_some())
         > 1
@@ -139,14 +141,34 @@ pub(crate) fn simulate<'py>(
     let info = scene.info();
     let columns = info.columns();
     let n = columns.len();
-    let (result, rows) = interruptible(
+    let (result, rows, estimate) = interruptible(
         py,
         |flag| {
             let mut plan = plan.clone();
             plan.cancel = Some(CancelFlag(flag));
             let mut rows = Columns(vec![Vec::new(); n]);
-            let result = scene.simulate(&params, &plan, &mut rows);
-            (result, rows.0)
+            let mut written = WrittenRows::new(info);
+            let result = if check {
+                scene.simulate(
+                    &params,
+                    &plan,
+                    &mut Tap {
+                        inner: &mut rows,
+                        rows: &mut written,
+                    },
+                )
+            } else {
+                scene.simulate(&params, &plan, &mut rows)
+            };
+            // A cancelled companion is an interrupted call: `interruptible` raises
+            // KeyboardInterrupt once the flag is set, whatever this returns.
+            let estimate = match &result {
+                Ok(summary) if check => Some(error_estimate::estimate(
+                    scene, &params, &plan, summary, &written,
+                )),
+                _ => None,
+            };
+            (result, rows.0, estimate)
         },
         |_| Ok(()),
     )?;
@@ -178,8 +200,44 @@ pub(crate) fn simulate<'py>(
     out.set_item("evaluations", summary.evaluations)?;
     out.set_item("reached_t", summary.t)?;
     out.set_item("max_energy_rel_err", summary.max_energy_rel_err)?;
+    out.set_item("error_estimate", estimate_dict(py, estimate)?)?;
     out.set_item("version", env!("CARGO_PKG_VERSION"))?;
     Ok(out)
+}
+
+/// The error estimate as a dict (`None` with `check=False`): `final` and `max` (the largest
+/// over the compared rows), `max_t`, `rows_compared`, `trust` and `trust_reason`, the
+/// companion's and the check's settings; or `status='failed'` with the `reason`.
+fn estimate_dict<'py>(
+    py: Python<'py>,
+    estimate: Option<Result<ErrorEstimate, String>>,
+) -> PyResult<Option<Bound<'py, PyDict>>> {
+    let Some(estimate) = estimate else {
+        return Ok(None);
+    };
+    let d = PyDict::new(py);
+    match estimate {
+        Err(reason) => {
+            d.set_item("status", "failed")?;
+            d.set_item("reason", reason)?;
+        }
+        Ok(e) => {
+            d.set_item("status", "estimated")?;
+            d.set_item("final", e.final_error)?;
+            d.set_item("max", e.max_error)?;
+            d.set_item("max_t", e.max_error_t)?;
+            d.set_item("rows_compared", e.rows_compared)?;
+            d.set_item("trust", e.trust.key())?;
+            d.set_item("trust_reason", e.trust_words())?;
+            d.set_item("companion", error_estimate::words(e.companion))?;
+            d.set_item("check", e.check.map(error_estimate::words))?;
+            d.set_item("expected_ratio", e.expected_ratio)?;
+            d.set_item("observed_ratio", e.observed_ratio)?;
+            d.set_item("factor", e.factor)?;
+            d.set_item("round_off", e.round_off)?;
+        }
+    }
+    Ok(Some(d))
 }
 
 /// `tumble scenes --json`, as text.

@@ -23,6 +23,7 @@ use tumble_integrators::Flow;
 use tumble_output::table::{Column, Format, Table, Values};
 use tumble_scenarios::scene::CancelFlag;
 use tumble_scenarios::{Params, Recorder, RunPlan, RunSummary, Scene, SceneInfo, StepControl};
+use tumble_studies::error_estimate::{self, ErrorEstimate, Tap, Trust, WrittenRows};
 use tumble_studies::simulation::{self, Naming, ParamOverride, RunRequest, failure_message};
 pub(crate) use tumble_studies::simulation::{LoadedScene, number};
 
@@ -99,6 +100,18 @@ pub struct Args {
     /// 0.5 rad a step (a step that does not resolve the motion is refused otherwise).
     #[arg(long = "allow-coarse-step")]
     pub allow_coarse_step: bool,
+    /// Estimate the error of the written rows by running the method again at half the step
+    /// (or a tolerance 100 times tighter) and, to judge that estimate, at twice the step (or
+    /// 100 times looser); the estimate goes to the summary and the provenance file. It costs
+    /// about 2–3 times the run; `off` skips it.
+    #[arg(
+        long,
+        value_name = "on|off",
+        default_value = "on",
+        value_parser = parse_check,
+        action = clap::ArgAction::Set
+    )]
+    pub check: bool,
     /// Write the trajectory to FILE instead of stdout (`-` is stdout).
     #[arg(short = 'o', long = "output", value_name = "FILE.csv|FILE.parquet")]
     pub output: Option<PathBuf>,
@@ -274,6 +287,15 @@ fn check_budget(plan: &RunPlan, info: &SceneInfo, args: &Args) -> Result<()> {
 /// JSON written beside a CSV).
 pub const METADATA_KEY: &str = "tumble";
 
+/// Parses `--check`.
+fn parse_check(raw: &str) -> Result<bool> {
+    match raw {
+        "on" => Ok(true),
+        "off" => Ok(false),
+        _ => bail!("`{raw}` is not a check setting: give on or off"),
+    }
+}
+
 /// Parses `--format`.
 fn parse_format(raw: &str) -> Result<Format> {
     Format::parse(raw)
@@ -441,7 +463,93 @@ struct SimulationRecord<'a> {
     reached_t: f64,
     max_energy_rel_err: f64,
     energy_warning: bool,
+    /// The error estimate (`--check on`), or why there is none.
+    error_estimate: EstimateRecord,
     wall_time_s: f64,
+}
+
+/// The error estimate as the provenance file records it.
+#[derive(serde::Serialize)]
+struct EstimateRecord {
+    /// `estimated`, `off` (`--check off`) or `failed`.
+    status: &'static str,
+    /// Why there is no estimate (`failed`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    reason: Option<String>,
+    #[serde(flatten, skip_serializing_if = "Option::is_none")]
+    estimate: Option<EstimateFigures>,
+}
+
+/// The figures of an error estimate (tumble_studies::error_estimate).
+#[derive(serde::Serialize)]
+struct EstimateFigures {
+    /// Estimated error of the final state (work–precision norm).
+    #[serde(rename = "final")]
+    final_error: f64,
+    /// Largest estimated error over the compared rows.
+    max: f64,
+    /// Time of that row.
+    max_t: f64,
+    rows_compared: u64,
+    /// `trustworthy`, `round-off`, `not-trustworthy` or `unchecked`.
+    trust: &'static str,
+    /// Why, in words.
+    trust_reason: String,
+    companion: String,
+    check: Option<String>,
+    expected_ratio: f64,
+    observed_ratio: Option<f64>,
+    factor: f64,
+    round_off: f64,
+    companion_steps: u64,
+    companion_evaluations: u64,
+}
+
+impl EstimateRecord {
+    fn of(estimate: &Estimated) -> Self {
+        match estimate {
+            Estimated::Off => EstimateRecord {
+                status: "off",
+                reason: None,
+                estimate: None,
+            },
+            Estimated::Failed(reason) => EstimateRecord {
+                status: "failed",
+                reason: Some(reason.clone()),
+                estimate: None,
+            },
+            Estimated::Done(e) => EstimateRecord {
+                status: "estimated",
+                reason: None,
+                estimate: Some(EstimateFigures {
+                    final_error: e.final_error,
+                    max: e.max_error,
+                    max_t: e.max_error_t,
+                    rows_compared: e.rows_compared,
+                    trust: e.trust.key(),
+                    trust_reason: e.trust_words(),
+                    companion: error_estimate::words(e.companion),
+                    check: e.check.map(error_estimate::words),
+                    expected_ratio: e.expected_ratio,
+                    observed_ratio: e.observed_ratio,
+                    factor: e.factor,
+                    round_off: e.round_off,
+                    companion_steps: e.steps,
+                    companion_evaluations: e.evaluations,
+                }),
+            },
+        }
+    }
+}
+
+/// The error estimate of a run, or why there is none.
+enum Estimated {
+    /// `--check off`.
+    Off,
+    /// The companion could not run, or the run did not finish (why).
+    Failed(String),
+    /// The estimate.
+    Done(ErrorEstimate),
 }
 
 impl<'a> SimulationRecord<'a> {
@@ -451,6 +559,7 @@ impl<'a> SimulationRecord<'a> {
         wall: f64,
         csv: Option<&Path>,
         energy_warn: f64,
+        estimate: &Estimated,
     ) -> Self {
         let plan = &setup.plan;
         let (dt, tol) = match plan.step {
@@ -479,6 +588,7 @@ impl<'a> SimulationRecord<'a> {
             reached_t: summary.t,
             max_energy_rel_err: summary.max_energy_rel_err,
             energy_warning: !(summary.max_energy_rel_err <= energy_warn),
+            error_estimate: EstimateRecord::of(estimate),
             wall_time_s: wall,
         }
     }
@@ -491,15 +601,29 @@ struct Outcome {
     kept: Option<Vec<Vec<f64>>>,
     /// The reader closed the output before the end (`| head`).
     closed: bool,
+    /// The written rows' times and states (`--check on`).
+    written: Option<WrittenRows>,
 }
 
-/// Runs the scene into `out` (CSV), or only keeps the rows when `out` is `None`.
-fn run_into<W: Write>(setup: &Setup, out: Option<W>, keep: bool) -> Result<Outcome> {
+/// Runs the scene into `out` (CSV), or only keeps the rows when `out` is `None`; with
+/// `check`, keeps the written rows' states for the error estimate too.
+fn run_into<W: Write>(setup: &Setup, out: Option<W>, keep: bool, check: bool) -> Result<Outcome> {
     let info = setup.scene.info();
     let mut recorder = CsvRecorder::new(out, &info.columns(), keep, setup.max_output)?;
-    let result = setup
-        .scene
-        .simulate(&setup.params, &setup.plan, &mut recorder);
+    let mut written = check.then(|| WrittenRows::new(info));
+    let result = match &mut written {
+        Some(rows) => setup.scene.simulate(
+            &setup.params,
+            &setup.plan,
+            &mut Tap {
+                inner: &mut recorder,
+                rows,
+            },
+        ),
+        None => setup
+            .scene
+            .simulate(&setup.params, &setup.plan, &mut recorder),
+    };
     let summary = result.map_err(|e| anyhow::anyhow!(failure_message(info, &e)))?;
     if let Some(t) = recorder.over_at {
         bail!(
@@ -516,7 +640,58 @@ fn run_into<W: Write>(setup: &Setup, out: Option<W>, keep: bool) -> Result<Outco
         summary,
         kept,
         closed,
+        written,
     })
+}
+
+/// The error estimate of a finished run (module doc of `tumble_studies::error_estimate`).
+fn estimate_error(setup: &Setup, outcome: &Outcome) -> Estimated {
+    let Some(rows) = &outcome.written else {
+        return Estimated::Off;
+    };
+    let summary = &outcome.summary;
+    if outcome.closed || !(summary.t >= setup.plan.t_end || summary.terminated) {
+        return Estimated::Failed(format!(
+            "the run stopped at t = {} before its end",
+            number(summary.t)
+        ));
+    }
+    match error_estimate::estimate(setup.scene, &setup.params, &setup.plan, summary, rows) {
+        Ok(e) => Estimated::Done(e),
+        Err(reason) => Estimated::Failed(reason),
+    }
+}
+
+/// The summary's lines on the error estimate.
+fn print_estimate(estimated: &Estimated) {
+    match estimated {
+        Estimated::Off => eprintln!("error        not estimated (--check off)"),
+        Estimated::Failed(reason) => eprintln!("error        not estimated: {reason}"),
+        Estimated::Done(e) => {
+            eprintln!(
+                "error        estimated {:.1e} at the final state, at most {:.1e} (t = {}) over \
+                 {} of {} rows (work–precision norm; companion {}{})",
+                e.final_error,
+                e.max_error,
+                format!("{:.4e}", e.max_error_t)
+                    .parse::<f64>()
+                    .map_or_else(|_| number(e.max_error_t), number),
+                e.rows_compared,
+                e.rows_written,
+                error_estimate::words(e.companion),
+                e.check.map_or_else(String::new, |c| format!(
+                    ", check {}",
+                    error_estimate::words(c)
+                ))
+            );
+            let label = if e.trust == Trust::NotTrustworthy {
+                "warning"
+            } else {
+                ""
+            };
+            eprintln!("{label:13}{}", e.trust_words());
+        }
+    }
 }
 
 /// Runs the subcommand.
@@ -598,20 +773,31 @@ pub fn run(args: &Args) -> Result<()> {
     let start = Instant::now();
     let (outcome, written) = match &csv_dest {
         // A Parquet file is written whole after the run, from the kept columns.
-        _ if parquet => (run_into::<io::Sink>(&setup, None, true)?, None),
+        _ if parquet => (run_into::<io::Sink>(&setup, None, true, args.check)?, None),
         Some(dest) if *dest.mode() != output::Mode::Stdout => {
             let mut out = dest.create().context("-o")?;
-            let outcome = run_into(&setup, Some(&mut out), keep)?;
+            let outcome = run_into(&setup, Some(&mut out), keep, args.check)?;
             (outcome, Some(out))
         }
-        _ => (run_into(&setup, Some(io::stdout().lock()), keep)?, None),
+        _ => (
+            run_into(&setup, Some(io::stdout().lock()), keep, args.check)?,
+            None,
+        ),
     };
+    let elapsed = start.elapsed();
+    let check_start = Instant::now();
+    let estimated = if signals::interrupted().is_some() {
+        Estimated::Off
+    } else {
+        estimate_error(&setup, &outcome)
+    };
+    let check_seconds = check_start.elapsed().as_secs_f64();
     let Outcome {
         summary,
         kept,
         closed,
+        ..
     } = outcome;
-    let elapsed = start.elapsed();
     if let Some(code) = signals::interrupted() {
         // Dropping the unfinished output removes its temporary file: nothing is left behind.
         drop(written);
@@ -628,10 +814,15 @@ pub fn run(args: &Args) -> Result<()> {
         return Err(signals::Interrupted {
             code,
             message: format!(
-                "{} stopped at t = {} of {} s; {kept}",
+                "{} stopped at t = {} of {} s{}; {kept}",
                 info.name,
                 number(summary.t),
-                number(setup.plan.t_end)
+                number(setup.plan.t_end),
+                if summary.t >= setup.plan.t_end || summary.terminated {
+                    " (while estimating its error)"
+                } else {
+                    ""
+                }
             ),
         }
         .into());
@@ -654,6 +845,7 @@ pub fn run(args: &Args) -> Result<()> {
         elapsed.as_secs_f64(),
         args.output.as_deref(),
         args.energy_warn,
+        &estimated,
     ))?;
     let trajectory = if parquet {
         let columns = info.columns().into_iter().zip(kept.unwrap_or_default());
@@ -745,17 +937,24 @@ pub fn run(args: &Args) -> Result<()> {
             ""
         }
     );
+    print_estimate(&estimated);
     if let Some(p) = &args.plot {
         eprintln!("plot         {}", p.display());
     }
     if !replaced.is_empty() {
         eprintln!("replaced     {} (they existed)", replaced.join(", "));
     }
-    let seconds = elapsed.as_secs_f64();
-    if seconds < 1.0 {
-        eprintln!("wall time    {:.1} ms", 1e3 * seconds);
-    } else {
-        eprintln!("wall time    {seconds:.3} s");
-    }
+    let time = |seconds: f64| {
+        if seconds < 1.0 {
+            format!("{:.1} ms", 1e3 * seconds)
+        } else {
+            format!("{seconds:.3} s")
+        }
+    };
+    let check_time = match estimated {
+        Estimated::Off => String::new(),
+        _ => format!(", and {} for the error estimate", time(check_seconds)),
+    };
+    eprintln!("wall time    {}{check_time}", time(elapsed.as_secs_f64()));
     Ok(())
 }

@@ -751,3 +751,75 @@ fn an_output_without_extension_gets_an_unambiguous_record_and_replacing_is_said(
         "{err}"
     );
 }
+
+/// The error of a run's final row against the scene's reference (`work_precision::reference`)
+/// in the work–precision norm, with the run's provenance record.
+fn run_error_and_record(dir: &Path, args: &[&str]) -> (f64, serde_json::Value, String) {
+    use tumble_studies::work_precision::{reference, state_error};
+    let out = succeeds(dir, args);
+    let csv = args[args.iter().position(|a| *a == "-o").unwrap() + 1];
+    let (_, rows) = read_csv(&dir.join(csv));
+    let record: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join(format!("{csv}.json"))).unwrap())
+            .unwrap();
+    let scene = find(args[1]).unwrap();
+    let info = scene.info();
+    let last = rows.last().unwrap();
+    let n = info.coordinates.len() + info.rate_names.len().max(info.coordinates.len());
+    let ours = tumble_scenarios::scene::FinalState {
+        t: last[0],
+        values: last[1..=n].to_vec(),
+    };
+    let r = reference(scene, &info.default_params(), ours.t).unwrap();
+    (state_error(info, &ours, &r.state), record, stderr(&out))
+}
+
+// `simulate` states the error of what it wrote: the heavy top's LGVI at dt = 1e-3 ends 8e-2 from
+// the scene's reference at t = 10 (energy conserved to 5e-10 all the same), and the estimate in
+// the summary and the provenance file is within a factor 10 of that and trustworthy; the default
+// run states its error at its true level, 1e-12; `--check off` states none.
+#[test]
+fn simulate_states_an_error_estimate_within_10x_of_the_error_against_the_reference() {
+    let dir = TempDir::new().unwrap();
+    let (truth, record, err) = run_error_and_record(
+        dir.path(),
+        &[
+            "simulate",
+            "heavy-top",
+            "--integrator",
+            "lgvi",
+            "--dt",
+            "1e-3",
+            "--allow-coarse-step",
+            "-o",
+            "lgvi.csv",
+        ],
+    );
+    let e = &record["error_estimate"];
+    let estimated = e["final"].as_f64().unwrap();
+    eprintln!("heavy-top lgvi dt = 1e-3: estimated {estimated:e}, true {truth:e}");
+    assert!(truth > 1e-2, "{truth:e}");
+    assert!(estimated >= truth / 10.0 && estimated <= 10.0 * truth);
+    assert_eq!(e["trust"], "trustworthy");
+    assert!(e["max"].as_f64().unwrap() >= estimated);
+    assert_eq!(e["rows_compared"], 10001);
+    assert!(err.contains("error        estimated"), "{err}");
+
+    let (truth, record, err) =
+        run_error_and_record(dir.path(), &["simulate", "heavy-top", "-o", "default.csv"]);
+    let estimated = record["error_estimate"]["final"].as_f64().unwrap();
+    eprintln!("heavy-top default: estimated {estimated:e}, true {truth:e}");
+    assert!(
+        truth <= 1e-11 && estimated <= 1e-11,
+        "{estimated:e} {truth:e}"
+    );
+    assert!(estimated >= truth / 10.0 && estimated <= 10.0 * truth);
+    assert!(err.contains("trustworthy"), "{err}");
+
+    let (_, record, err) = run_error_and_record(
+        dir.path(),
+        &["simulate", "heavy-top", "--check", "off", "-o", "off.csv"],
+    );
+    assert_eq!(record["error_estimate"]["status"], "off");
+    assert!(err.contains("not estimated (--check off)"), "{err}");
+}

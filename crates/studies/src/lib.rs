@@ -65,6 +65,7 @@
 //! ```
 
 pub mod catalog;
+pub mod error_estimate;
 pub mod hard_cases;
 pub mod simulation;
 pub mod sweep;

@@ -59,7 +59,14 @@ class Simulation:
     diagnostics). The run's record is in attributes: ``scene``, ``origin``, ``frame``,
     ``parameters``, ``integrator``, ``dt`` or ``tol``, ``t_end``, ``every``, ``at``, ``steps``,
     ``evaluations``, ``reached_t``, ``max_energy_rel_err`` (the largest relative energy error
-    over every step), ``version``.
+    over every step), ``error_estimate``, ``version``.
+
+    ``error_estimate`` (``None`` with ``check=False``) is a dict: ``final``, the estimated
+    error of the final state, and ``max``, the largest over the compared rows (at ``max_t``),
+    in the work–precision norm (``max |Δᵢ| / (1 + |yᵢ|)`` over the coordinates and rates);
+    ``trust`` (``'trustworthy'``, ``'round-off'``, ``'not-trustworthy'`` or ``'unchecked'``)
+    and ``trust_reason``; the ``companion`` and ``check`` settings that measured it. A
+    companion that failed gives ``status='failed'`` and its ``reason``.
     """
 
     def __init__(self, raw: Dict[str, Any]) -> None:
@@ -85,6 +92,7 @@ class Simulation:
         self.evaluations: int = raw["evaluations"]
         self.reached_t: float = raw["reached_t"]
         self.max_energy_rel_err: float = raw["max_energy_rel_err"]
+        self.error_estimate: Optional[Dict[str, Any]] = raw["error_estimate"]
         self.version: str = raw["version"]
 
     def __getitem__(self, name: str) -> np.ndarray:
@@ -131,6 +139,7 @@ def simulate(
     output_dt: Optional[float] = None,
     max_steps: int = 1_000_000_000,
     allow_coarse_step: bool = False,
+    check: bool = True,
 ) -> Simulation:
     """Run a scene and return its trajectory, as ``tumble simulate`` does.
 
@@ -142,7 +151,9 @@ def simulate(
     from dense output, and always the final state.
 
     A fixed step that turns the initial rotation by more than 0.5 rad a step is refused unless
-    ``allow_coarse_step=True``. Raises ``ValueError``/``TypeError`` for a refused input,
+    ``allow_coarse_step=True``. The run's error is estimated (``Simulation.error_estimate``)
+    by running it again at half the step (or a tolerance 100 times tighter) and at twice the
+    step (or 100 times looser): about 2–3 times the run's cost; ``check=False`` skips it. Raises ``ValueError``/``TypeError`` for a refused input,
     :class:`SimulationError` when the run fails, ``KeyboardInterrupt`` on Ctrl-C.
     """
     raw = _tumble.simulate(
@@ -157,6 +168,7 @@ def simulate(
         output_dt=output_dt,
         max_steps=max_steps,
         allow_coarse_step=allow_coarse_step,
+        check=check,
     )
     return Simulation(raw)
 

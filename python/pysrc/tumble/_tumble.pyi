@@ -20,6 +20,7 @@ def simulate(
     output_dt: Optional[float] = None,
     max_steps: int = 1_000_000_000,
     allow_coarse_step: bool = False,
+    check: bool = True,
 ) -> Dict[str, Any]:
     """The run's record, ``columns`` (names) and ``data``: the columns one after the other,
     native-endian float64 bytes, ``rows`` values each."""

@@ -2,6 +2,7 @@
 
 mod coriolis_landing;
 mod default_accuracy;
+mod error_estimate;
 mod fuzz;
 mod hard_cases;
 mod max_tilt_reference;
