@@ -78,7 +78,7 @@ impl ModelScene {
                 row_out.push(eq.momenta[i]);
                 let name = format!("p_{}", model.coordinates[i]);
                 conserved.push(leak(format!(
-                    "{name} (momentum of the cyclic coordinate {})",
+                    "{name} (momentum of the cyclic coordinate {}, at the default parameters)",
                     model.coordinates[i]
                 )));
                 diagnostics.push(leak(name));

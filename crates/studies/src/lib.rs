@@ -66,6 +66,7 @@
 
 pub mod catalog;
 pub mod hard_cases;
+pub mod models;
 pub mod simulation;
 pub mod sweep;
 pub mod work_precision;
