@@ -79,25 +79,7 @@ fn text(listed: &[Listed]) -> String {
         out += &format!("  name         {}\n", e.name);
         out += &format!("  coordinates  {}\n", e.coordinates.join(", "));
         out += &format!("  CSV columns  {}\n", e.columns.join(", "));
-        out += "  parameters\n";
-        let rows: Vec<Vec<String>> = e
-            .parameters
-            .iter()
-            .map(|p| {
-                vec![
-                    p.name.to_string(),
-                    p.default.to_string(),
-                    p.unit.to_string(),
-                    p.domain.clone(),
-                    p.description.to_string(),
-                ]
-            })
-            .collect();
-        out += &super::scenes::table(
-            &["name", "default", "unit", "domain", "description"],
-            &rows,
-            "    ",
-        );
+        out += &super::scenes::parameters(e);
         if !e.conserved.is_empty() {
             out += &format!("  conserved    {}\n", e.conserved.join("; "));
         }
