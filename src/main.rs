@@ -44,9 +44,13 @@ enum Command {
     /// Redraw a saved result (a simulate CSV, a sweep or work–precision folder) as PNG, SVG or
     /// PDF without recomputing it
     Plot(cmd::plot::Args),
+    /// List the model files of a directory (models/ by default): coordinates, parameters,
+    /// defaults, integrators
+    Models(cmd::models::Args),
     /// List the built-in scenes: coordinates, parameters, defaults, integrators
     Scenes(cmd::scenes::Args),
-    /// Run a scene (built-in or TOML file) and write its trajectory as CSV, optionally a plot
+    /// Run a scene (built-in, scene file or model file) and write its trajectory as CSV,
+    /// optionally a plot
     Simulate(cmd::simulate::Args),
     /// Run a parameter sweep in parallel (a TOML sweep file, or the built-in hoop-tilt map)
     Sweep(cmd::sweep::Args),
@@ -90,6 +94,7 @@ fn main() -> ExitCode {
         Command::Integrators(args) => cmd::integrators::run(&args),
         Command::Kinematics(args) => cmd::kinematics::run(&args),
         Command::Plot(args) => cmd::plot::run(&args),
+        Command::Models(args) => cmd::models::run(&args),
         Command::Scenes(args) => cmd::scenes::run(&args),
         Command::Simulate(args) => cmd::simulate::run(&args),
         Command::Sweep(args) => cmd::sweep::run(&args),

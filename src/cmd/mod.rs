@@ -6,6 +6,7 @@ pub mod hard_cases;
 pub mod inertia;
 pub mod integrators;
 pub mod kinematics;
+pub mod models;
 pub mod plot;
 pub mod scenes;
 pub mod simulate;

@@ -68,6 +68,29 @@ fn table(header: &[&str], rows: &[Vec<String>], indent: &str) -> String {
     out
 }
 
+/// The `parameters` block of a listing: a table of name, default, unit, domain, description.
+pub(crate) fn parameters(e: &Entry) -> String {
+    let rows: Vec<Vec<String>> = e
+        .parameters
+        .iter()
+        .map(|p| {
+            vec![
+                p.name.to_string(),
+                p.default.to_string(),
+                p.unit.to_string(),
+                p.domain.clone(),
+                p.description.to_string(),
+            ]
+        })
+        .collect();
+    "  parameters\n".to_string()
+        + &table(
+            &["name", "default", "unit", "domain", "description"],
+            &rows,
+            "    ",
+        )
+}
+
 /// The human-readable listing: one block per scene.
 fn text(entries: &[Entry]) -> String {
     let mut out = String::new();
@@ -78,25 +101,7 @@ fn text(entries: &[Entry]) -> String {
         out += &format!("{} — {}\n", e.name, e.summary);
         out += &format!("  coordinates  {}\n", e.coordinates.join(", "));
         out += &format!("  CSV columns  {}\n", e.columns.join(", "));
-        out += "  parameters\n";
-        let rows: Vec<Vec<String>> = e
-            .parameters
-            .iter()
-            .map(|p| {
-                vec![
-                    p.name.to_string(),
-                    p.default.to_string(),
-                    p.unit.to_string(),
-                    p.domain.clone(),
-                    p.description.to_string(),
-                ]
-            })
-            .collect();
-        out += &table(
-            &["name", "default", "unit", "domain", "description"],
-            &rows,
-            "    ",
-        );
+        out += &parameters(e);
         out += &format!("  conserved    {}\n", e.conserved.join("; "));
         out += &format!("  oracle       {}\n", e.oracle);
         let step = match (e.default_dt, e.default_tol) {

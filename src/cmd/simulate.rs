@@ -144,8 +144,9 @@ struct Setup {
 /// A scene and its parameter overrides, as `simulate` and `work-precision` take them.
 #[derive(clap::Args, Debug)]
 pub struct SceneArgs {
-    /// A built-in scene (`tumble scenes` lists them) or a TOML scene file (taken as a file if
-    /// the argument ends in `.toml` or names an existing file).
+    /// A built-in scene (`tumble scenes` lists them), a TOML scene file, or a model file (a
+    /// TOML file with a `[model]` table: `tumble models` lists the shipped ones); taken as a
+    /// file if the argument ends in `.toml` or names an existing file.
     #[arg(value_name = "SCENE")]
     pub scene: String,
     /// Set a parameter of the scene, over its default or the scene file's value; repeat for

@@ -41,10 +41,11 @@ use crate::toml_file::{self, Location};
 /// A number as written.
 type RawNumber = Spanned<toml::Value>;
 
-/// The `[body]` table as TOML gives it.
+/// The `[body]` table as TOML gives it (deserialized inside other files' tables, such as a
+/// model's `geometry`, and read by [`read_mass_properties`]).
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
-pub(crate) struct RawBody {
+pub struct RawBody {
     mesh: Option<Spanned<String>>,
     units: Option<Spanned<String>>,
     mass: Option<RawNumber>,
@@ -380,6 +381,21 @@ pub(crate) fn read(
         pivot,
         parts: drawn,
     })
+}
+
+/// The mass properties of a `[body]` table written inside another file (`origin`, its `text`):
+/// every source combined, in the table's own frame; files are relative to `origin`'s directory.
+/// A `pivot` is refused (it belongs to the heavy-top scene).
+///
+/// # Errors
+/// As the scene file's `[body]` table: the key, its place and what is wrong.
+pub fn read_mass_properties(
+    origin: &str,
+    text: &str,
+    table: &Spanned<RawBody>,
+) -> Result<MassProperties, BodyTableError> {
+    let place = Place { origin, text };
+    read(&place, table, BodySceneKind::Free).map(|body| body.props)
 }
 
 /// An error and its sources, on one line.

@@ -175,4 +175,13 @@ pub enum SceneError {
         /// Time reached.
         t: f64,
     },
+    /// A model written as text refused its state or parameters before any step (a singular
+    /// mass matrix at the initial state, with the coordinate at fault and what to do).
+    #[error("model `{model}`: {message}")]
+    ModelRefused {
+        /// The model's name.
+        model: String,
+        /// What is wrong and what to do instead.
+        message: String,
+    },
 }

@@ -108,33 +108,50 @@ pub struct ParamOverride {
     pub value: f64,
 }
 
-/// The scene `arg` names (a built-in scene, or a TOML scene file when [`is_scene_file`]) with
-/// `overrides` applied in order.
+/// The scene `arg` names (a built-in scene, a TOML scene file or model file when
+/// [`is_scene_file`], or model text: several lines with a `[model]` table) with `overrides`
+/// applied in order.
 ///
 /// # Errors
 /// An unknown scene (listing the built-in ones), an unreadable or invalid scene file, an
 /// unknown parameter or a value outside its domain (after the override's label).
 pub fn load_scene(arg: &str, overrides: &[ParamOverride]) -> Result<LoadedScene, Refused> {
-    let (scene, origin, mut params, run, frame) = if is_scene_file(arg) {
-        let file = SceneFile::load(Path::new(arg)).map_err(|e| Refused(e.to_string()))?;
-        (file.scene, file.origin, file.params, file.run, file.frame)
-    } else {
-        let scene = scenes::find(arg).map_err(|e| match e {
-            SceneError::UnknownScene { name, known } => Refused(format!(
-                "unknown scene `{name}` (and no file of that name); built-in scenes: {known}; \
+    // Model text (Python passes a model as a string): several lines with a [model] table.
+    let text = arg.contains('\n') && tumble_model::is_model_text(arg);
+    let (scene, origin, mut params, run, frame) =
+        if text || (is_scene_file(arg) && tumble_model::is_model_file(Path::new(arg))) {
+            let (scene, origin) = if text {
+                (
+                    tumble_model::from_text(arg, "model text"),
+                    "model text".to_string(),
+                )
+            } else {
+                (tumble_model::load(Path::new(arg)), arg.to_string())
+            };
+            let scene = scene.map_err(|e| Refused(e.to_string()))?;
+            let run = scene.model().run.options.clone();
+            let scene: &'static dyn Scene = scene;
+            (scene, origin, scene.info().default_params(), run, None)
+        } else if is_scene_file(arg) {
+            let file = SceneFile::load(Path::new(arg)).map_err(|e| Refused(e.to_string()))?;
+            (file.scene, file.origin, file.params, file.run, file.frame)
+        } else {
+            let scene = scenes::find(arg).map_err(|e| match e {
+                SceneError::UnknownScene { name, known } => Refused(format!(
+                    "unknown scene `{name}` (and no file of that name); built-in scenes: {known}; \
                  a scene file must end in .toml"
-            )),
-            other => Refused(other.to_string()),
-        })?;
-        let params = scene.info().default_params();
-        (
-            scene,
-            "builtin".to_string(),
-            params,
-            RunOptions::default(),
-            None,
-        )
-    };
+                )),
+                other => Refused(other.to_string()),
+            })?;
+            let params = scene.info().default_params();
+            (
+                scene,
+                "builtin".to_string(),
+                params,
+                RunOptions::default(),
+                None,
+            )
+        };
     for o in overrides {
         params
             .set(&o.key, o.value)

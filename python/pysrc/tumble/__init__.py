@@ -143,8 +143,9 @@ def simulate(
 ) -> Simulation:
     """Run a scene and return its trajectory, as ``tumble simulate`` does.
 
-    ``scene`` is a built-in scene (:func:`scenes`) or a TOML scene file (a path ending in
-    ``.toml`` or naming an existing file). ``params`` sets parameters over the scene's (or the
+    ``scene`` is a built-in scene (:func:`scenes`), a TOML scene file or model file (a path
+    ending in ``.toml`` or naming an existing file; ``tumble models`` lists the shipped models),
+    or the text of a model file itself. ``params`` sets parameters over the scene's (or the
     file's) values. ``integrator``, ``dt`` (fixed step) or ``tol`` (adaptive tolerance),
     ``t_end`` (horizon) override the file's ``[run]`` options and the scene's defaults. Rows:
     every step (or every ``every``-th), or at the times ``at`` or every ``output_dt`` seconds

@@ -43,7 +43,6 @@ use std::collections::BTreeMap;
 use tumble_scenarios::error::SceneError;
 use tumble_scenarios::params::Params;
 use tumble_scenarios::scene::Scene;
-use tumble_scenarios::scenes;
 use tumble_scenarios::toml_file::{self, TomlFileError};
 
 /// The built-in cases: `(file name, text)`, in atlas order.
@@ -260,7 +259,8 @@ impl Case {
                 format!("`{}`: use letters, digits and dashes", raw.name),
             ));
         }
-        let scene = scenes::find(&raw.scene).map_err(|e| invalid("scene", e.to_string()))?;
+        let scene = crate::models::find_scene(&raw.scene, origin)
+            .map_err(|e| invalid("scene", e.to_string()))?;
         let info = scene.info();
         // Numbers or angle expressions (`pi/3`, `60 deg`), as in scene files.
         let number = |table: &str, name: &str, value: &toml::Value| {

@@ -17,7 +17,6 @@ use super::value::{Num, Src};
 use tumble_scenarios::error::SceneError;
 use tumble_scenarios::params::Params;
 use tumble_scenarios::scene::{RunOptions, RunPlan, Scene, StepControl};
-use tumble_scenarios::scenes;
 use tumble_scenarios::toml_file::{self, Location, TomlFileError};
 
 #[derive(Debug, Clone)]
@@ -357,8 +356,8 @@ impl Draft {
         let Some(scene_name) = &self.scene else {
             return Err(TomlFileError::missing_scene(&self.origin).into());
         };
-        let scene =
-            scenes::find(&scene_name.value).map_err(|e| scene_error(&scene_name.at, "scene", e))?;
+        let scene = crate::models::find_scene(&scene_name.value, &self.origin)
+            .map_err(|e| scene_error(&scene_name.at, "scene", e))?;
         let file_at = Origin::File(Location {
             origin: self.origin.clone(),
             position: None,

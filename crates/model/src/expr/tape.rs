@@ -1,0 +1,205 @@
+//! A flat instruction tape: the nodes some outputs of a [`Graph`] need, in dependency order,
+//! each writing one slot of a workspace allocated once. Evaluating it allocates nothing.
+//!
+//! Inputs split into *fixed* ones (a run's parameters) and *varying* ones (time, coordinates,
+//! rates): the nodes that depend on fixed inputs only (a moment of inertia `M a²/2`, `g/a`)
+//! form the tape's prelude, evaluated once per run by [`Tape::run_prelude`]; the rest, the body
+//! run per evaluation by [`Tape::run`].
+
+use super::{Fun, Graph, Id, Node};
+
+/// One operation of a tape.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Op {
+    Const(f64),
+    Add,
+    Sub,
+    Mul,
+    Div,
+    Neg,
+    Powi(i32),
+    Pow,
+    Atan2,
+    Call(Fun),
+}
+
+/// An instruction: `slot[dst] = op(slot[a], slot[b])`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Instr {
+    op: Op,
+    dst: u32,
+    a: u32,
+    b: u32,
+}
+
+/// Outputs of a graph as instructions.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Tape {
+    inputs: usize,
+    slots: usize,
+    prelude: Vec<Instr>,
+    body: Vec<Instr>,
+    outputs: Vec<u32>,
+}
+
+impl Tape {
+    /// The tape of `outputs`, every input varying (no prelude); inputs are numbered as in the
+    /// graph's [`Node::Input`] and the workspace has a slot for each up to the largest.
+    #[must_use]
+    pub fn new(graph: &Graph, outputs: &[Id]) -> Self {
+        Self::with_fixed(graph, outputs, &|_| false)
+    }
+
+    /// The tape of `outputs`, with the nodes that depend only on constants and on inputs for
+    /// which `fixed` holds in the prelude.
+    #[must_use]
+    pub fn with_fixed(graph: &Graph, outputs: &[Id], fixed: &dyn Fn(u32) -> bool) -> Self {
+        let n = graph.len();
+        let mut needed = vec![false; n];
+        let mut stack: Vec<Id> = outputs.to_vec();
+        let mut inputs = 0usize;
+        while let Some(id) = stack.pop() {
+            if std::mem::replace(&mut needed[id.index()], true) {
+                continue;
+            }
+            let node = graph.node(id);
+            if let Node::Input(k) = node {
+                inputs = inputs.max(k as usize + 1);
+            }
+            let (ops, count) = node.operands();
+            stack.extend_from_slice(&ops[..count]);
+        }
+        // Node ids are topological: operands are built before the nodes that read them.
+        let mut slot = vec![u32::MAX; n];
+        let mut varying = vec![false; n];
+        let mut next = inputs;
+        let (mut prelude, mut body) = (Vec::new(), Vec::new());
+        for i in 0..n {
+            if !needed[i] {
+                continue;
+            }
+            let node = graph.node(Id(i as u32));
+            let (ops, count) = node.operands();
+            let [a, b] = [ops[0], ops[1]].map(|o| slot[o.index()]);
+            let op = match node {
+                Node::Input(k) => {
+                    slot[i] = k;
+                    varying[i] = !fixed(k);
+                    continue;
+                }
+                Node::Const(bits) => Op::Const(f64::from_bits(bits)),
+                Node::Add(..) => Op::Add,
+                Node::Sub(..) => Op::Sub,
+                Node::Mul(..) => Op::Mul,
+                Node::Div(..) => Op::Div,
+                Node::Neg(_) => Op::Neg,
+                Node::Powi(_, m) => Op::Powi(m),
+                Node::Pow(..) => Op::Pow,
+                Node::Atan2(..) => Op::Atan2,
+                Node::Call(f, _) => Op::Call(f),
+            };
+            varying[i] = ops[..count].iter().any(|o| varying[o.index()]);
+            slot[i] = next as u32;
+            let instr = Instr {
+                op,
+                dst: next as u32,
+                a: if count > 0 { a } else { 0 },
+                b: if count > 1 { b } else { 0 },
+            };
+            next += 1;
+            if varying[i] {
+                body.push(instr);
+            } else {
+                prelude.push(instr);
+            }
+        }
+        Tape {
+            inputs,
+            slots: next,
+            prelude,
+            body,
+            outputs: outputs.iter().map(|o| slot[o.index()]).collect(),
+        }
+    }
+
+    /// A workspace for this tape (the one allocation).
+    #[must_use]
+    pub fn workspace(&self) -> Vec<f64> {
+        vec![0.0; self.slots]
+    }
+
+    /// Number of input slots (the largest input number read, plus one).
+    #[must_use]
+    pub fn inputs(&self) -> usize {
+        self.inputs
+    }
+
+    /// Instructions run per evaluation.
+    #[must_use]
+    pub fn len(&self) -> usize {
+        self.body.len()
+    }
+
+    /// Whether the body is empty.
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        self.body.is_empty()
+    }
+
+    /// Instructions of the prelude.
+    #[must_use]
+    pub fn prelude_len(&self) -> usize {
+        self.prelude.len()
+    }
+
+    #[inline]
+    fn exec(code: &[Instr], w: &mut [f64]) {
+        for ins in code {
+            let x = w[ins.a as usize];
+            let y = w[ins.b as usize];
+            w[ins.dst as usize] = match ins.op {
+                Op::Const(c) => c,
+                Op::Add => x + y,
+                Op::Sub => x - y,
+                Op::Mul => x * y,
+                Op::Div => x / y,
+                Op::Neg => -x,
+                Op::Powi(m) => x.powi(m),
+                Op::Pow => x.powf(y),
+                Op::Atan2 => x.atan2(y),
+                Op::Call(f) => f.apply(x),
+            };
+        }
+    }
+
+    /// Runs the prelude: after the fixed inputs are set in `w` (`w[k]` for input `k`).
+    pub fn run_prelude(&self, w: &mut [f64]) {
+        Self::exec(&self.prelude, w);
+    }
+
+    /// Runs the body: after the varying inputs are set in `w`.
+    pub fn run(&self, w: &mut [f64]) {
+        Self::exec(&self.body, w);
+    }
+
+    /// Sets every input from `inputs` and runs prelude and body.
+    pub fn run_all(&self, w: &mut [f64], inputs: &[f64]) {
+        let n = self.inputs.min(inputs.len());
+        w[..n].copy_from_slice(&inputs[..n]);
+        self.run_prelude(w);
+        self.run(w);
+    }
+
+    /// Output `i` after a run.
+    #[must_use]
+    #[inline]
+    pub fn output(&self, w: &[f64], i: usize) -> f64 {
+        w[self.outputs[i] as usize]
+    }
+
+    /// Number of outputs.
+    #[must_use]
+    pub fn outputs(&self) -> usize {
+        self.outputs.len()
+    }
+}

@@ -1,0 +1,1035 @@
+//! Model files (TOML): what a model declares, read and checked before any work, into a
+//! [`Model`] whose equations are nodes of one expression graph.
+//!
+//! # Format
+//!
+//! ```toml
+//! [model]
+//! name = "driven-hoop"                       # how `tumble models` and the rows name it
+//! summary = "bead on a vertical hoop spun at constant omega about the vertical"
+//!
+//! [parameters]                               # in this order; `--set NAME=VALUE` changes one
+//! M = { default = 1.0, unit = "kg", domain = "positive", description = "hoop mass" }
+//! omega = 4.43                               # short form: a default, any finite value
+//!
+//! [coordinates]                              # generalized coordinates, in state order
+//! alpha = { initial = "alpha0", rate = "0" } # initial value and rate: expressions of parameters
+//!
+//! [definitions]                              # named expressions, each may use the ones before
+//! spin = "omega*t"                           # a prescribed angle (a driven hoop)
+//!
+//! [frames.hoop]                              # an orientation (body → model frame)
+//! euler = "zyz"                              # any of the 12 conventions, intrinsic by default
+//! angles = ["spin", "pi/2", "0"]             # ... or: rotations = [["z", "phi"], ["x", "theta"]]
+//! parent = "ring"                            # optional: turns with another frame (gimbals)
+//!
+//! [rotating_frame]                           # optional: the model frame turns (the Earth)
+//! omega = ["0", "W*sin(colat)", "W*cos(colat)"]
+//!
+//! [bodies.hoop]                              # a rigid body
+//! frame = "hoop"                             # its orientation (none: it does not turn)
+//! origin = ["0", "0", "0"]                   # its frame's origin in the model frame
+//! mass = "M"                                 # mass, centre of mass in its frame, inertia about
+//! com = ["0", "0", "0"]                      # the centre of mass: 3 principal moments or
+//! inertia = ["M*a^2/2", "M*a^2/2", "M*a^2"]  # 6 entries [xx, yy, zz, xy, xz, yz]
+//! # geometry = { shape = [{ shape = "hoop:1", mass = 1 }] }  # ... or the [body] vocabulary
+//!
+//! [points.bead]                              # a point mass
+//! mass = "m"
+//! frame = "hoop"                             # its position is in this frame (none: the model's)
+//! position = ["a*cos(alpha)", "a*sin(alpha)", "0"]
+//!
+//! [lagrangian]
+//! gravity = ["0", "0", "-g"]                 # uniform gravity on every mass (model frame)
+//! potential = "0"                            # further potential energy V
+//! kinetic = "0"                              # further kinetic energy (may use rates alpha_dot)
+//!
+//! [outputs]                                  # extra columns (coordinates, rates, t, parameters)
+//! height = "-a*cos(alpha)"
+//!
+//! [run]                                      # defaults of a run
+//! integrator = "gauss8"
+//! dt = 0.01
+//! t_end = 10.0
+//! ```
+//!
+//! Expressions are strings in the language of [`crate::expr::parse`] (numbers are accepted as
+//! they are). Names in scope: the parameters; in positions, angles, definitions and the
+//! potential also `t`, the coordinates and the definitions; in `lagrangian.kinetic` and `[outputs]` also the
+//! rates `NAME_dot`. Every error names the file, line and column, the key, and for an
+//! expression the place in it with a caret.
+
+use std::collections::{BTreeMap, HashMap};
+use std::path::Path;
+
+use serde::Deserialize;
+use toml::Spanned;
+use tumble_kinematics::{EulerConvention, RotationKind};
+use tumble_scenarios::body_table::{RawBody, read_mass_properties};
+use tumble_scenarios::params::Domain;
+use tumble_scenarios::toml_file::{self, Location, TomlFileError};
+use tumble_scenarios::{RunOptions, StepControl};
+
+use crate::expr::parse::{ParseError, Scope, parse};
+use crate::expr::{Graph, Id};
+use crate::mechanics::{Algebra, Chain, Equations, Layout, M3, V3, equations};
+
+/// The largest model file read, in bytes.
+pub const MAX_FILE_BYTES: usize = 1 << 20;
+/// The most generalized coordinates a model may have.
+pub const MAX_COORDINATES: usize = 6;
+/// The most nodes a model's expressions and derivatives may grow to.
+pub const MAX_NODES: usize = 200_000;
+
+/// What is wrong with a model file.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum ModelFileError {
+    /// Not readable, not TOML, an unknown key or a value of the wrong type.
+    #[error(transparent)]
+    File(#[from] TomlFileError),
+    /// A key whose value is refused.
+    #[error("{at}: `{key}`: {message}{excerpt}")]
+    Invalid {
+        /// Where.
+        at: Location,
+        /// The dotted key.
+        key: String,
+        /// What is wrong and what to write instead.
+        message: String,
+        /// The offending line with a caret (may be empty).
+        excerpt: String,
+    },
+    /// An expression that does not parse.
+    #[error("{at}: `{key}`: {message}\n{excerpt}")]
+    Expression {
+        /// Where the fault is (in the file).
+        at: Location,
+        /// The dotted key.
+        key: String,
+        /// What is wrong.
+        message: String,
+        /// The expression with a caret under the fault.
+        excerpt: String,
+    },
+}
+
+/// A declared parameter.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ParamDef {
+    /// Name.
+    pub name: String,
+    /// Default value.
+    pub default: f64,
+    /// Unit (may be empty).
+    pub unit: String,
+    /// Allowed values.
+    pub domain: Domain,
+    /// What it is.
+    pub description: String,
+}
+
+/// Run defaults of a model file.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RunDefaults {
+    /// Integrator.
+    pub integrator: String,
+    /// Fixed step (s).
+    pub dt: f64,
+    /// Horizon (s).
+    pub t_end: f64,
+    /// The file's own `[run]` options (for the caller to lay its own over).
+    pub options: RunOptions,
+}
+
+/// A model read from a file: its declarations and its equations on one graph.
+#[derive(Debug, Clone)]
+pub struct Model {
+    /// Name.
+    pub name: String,
+    /// One line: what it is.
+    pub summary: String,
+    /// Parameters, in order.
+    pub params: Vec<ParamDef>,
+    /// Coordinates, in state order.
+    pub coordinates: Vec<String>,
+    /// The graph.
+    pub graph: Graph,
+    /// The input layout.
+    pub layout: Layout,
+    /// Equations of motion, energy, momenta.
+    pub equations: Equations,
+    /// Initial coordinates and rates (expressions of the parameters).
+    pub initial: Vec<Id>,
+    /// Initial rates.
+    pub initial_rates: Vec<Id>,
+    /// Extra output columns.
+    pub outputs: Vec<(String, Id)>,
+    /// Run defaults.
+    pub run: RunDefaults,
+    /// Where the model came from (a path, or a name given to text).
+    pub origin: String,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawFile {
+    model: Spanned<RawHeader>,
+    parameters: Option<BTreeMap<Spanned<String>, Spanned<toml::Value>>>,
+    coordinates: Option<BTreeMap<Spanned<String>, Spanned<RawCoordinate>>>,
+    definitions: Option<BTreeMap<Spanned<String>, Spanned<toml::Value>>>,
+    frames: Option<BTreeMap<Spanned<String>, Spanned<RawFrame>>>,
+    rotating_frame: Option<Spanned<RawRotating>>,
+    bodies: Option<BTreeMap<Spanned<String>, Spanned<RawBodyDef>>>,
+    points: Option<BTreeMap<Spanned<String>, Spanned<RawPoint>>>,
+    lagrangian: Option<RawLagrangian>,
+    outputs: Option<BTreeMap<Spanned<String>, Spanned<toml::Value>>>,
+    run: Option<Spanned<RawRun>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawHeader {
+    name: Spanned<String>,
+    summary: Option<String>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawCoordinate {
+    initial: Spanned<toml::Value>,
+    rate: Option<Spanned<toml::Value>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawFrame {
+    euler: Option<Spanned<String>>,
+    angles: Option<Spanned<Vec<Spanned<toml::Value>>>>,
+    rotations: Option<Spanned<Vec<Spanned<RawRotation>>>>,
+    parent: Option<Spanned<String>>,
+}
+
+/// `[axis, angle]` of a chain of rotations.
+type RawRotation = (String, Spanned<toml::Value>);
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawRotating {
+    omega: Spanned<Vec<Spanned<toml::Value>>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawBodyDef {
+    frame: Option<Spanned<String>>,
+    origin: Option<Spanned<Vec<Spanned<toml::Value>>>>,
+    mass: Option<Spanned<toml::Value>>,
+    com: Option<Spanned<Vec<Spanned<toml::Value>>>>,
+    inertia: Option<Spanned<Vec<Spanned<toml::Value>>>>,
+    geometry: Option<Spanned<RawBody>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawPoint {
+    mass: Spanned<toml::Value>,
+    frame: Option<Spanned<String>>,
+    origin: Option<Spanned<Vec<Spanned<toml::Value>>>>,
+    position: Spanned<Vec<Spanned<toml::Value>>>,
+}
+
+#[derive(Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+struct RawLagrangian {
+    gravity: Option<Spanned<Vec<Spanned<toml::Value>>>>,
+    potential: Option<Spanned<toml::Value>>,
+    kinetic: Option<Spanned<toml::Value>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawRun {
+    integrator: Option<String>,
+    dt: Option<Spanned<toml::Value>>,
+    tol: Option<Spanned<toml::Value>>,
+    t_end: Option<Spanned<toml::Value>>,
+}
+
+/// Entries of a table in the order the file writes them.
+fn ordered<T>(map: Option<BTreeMap<Spanned<String>, T>>) -> Vec<(Spanned<String>, T)> {
+    let mut v: Vec<_> = map.unwrap_or_default().into_iter().collect();
+    v.sort_by_key(|(k, _)| k.span().start);
+    v
+}
+
+/// Names visible to an expression.
+struct Names {
+    map: HashMap<String, Id>,
+    order: Vec<String>,
+}
+
+impl Names {
+    fn new() -> Self {
+        Names {
+            map: HashMap::new(),
+            order: Vec::new(),
+        }
+    }
+
+    fn insert(&mut self, name: &str, id: Id) {
+        if self.map.insert(name.to_string(), id).is_none() {
+            self.order.push(name.to_string());
+        }
+    }
+}
+
+impl Scope for Names {
+    fn resolve(&self, name: &str, _graph: &mut Graph) -> Option<Id> {
+        self.map.get(name).copied()
+    }
+    fn names(&self) -> Vec<String> {
+        self.order.clone()
+    }
+}
+
+/// The text being read, to place errors.
+struct Src<'a> {
+    origin: &'a str,
+    text: &'a str,
+}
+
+impl Src<'_> {
+    fn invalid(
+        &self,
+        span: &std::ops::Range<usize>,
+        key: &str,
+        message: impl ToString,
+    ) -> ModelFileError {
+        let at = Location::at(self.origin, self.text, span.start);
+        ModelFileError::Invalid {
+            excerpt: toml_file::excerpt(self.text, &at),
+            at,
+            key: key.to_string(),
+            message: message.to_string(),
+        }
+    }
+
+    /// A number (or an angle such as `"pi/2"`).
+    fn number(&self, key: &str, value: &Spanned<toml::Value>) -> Result<f64, ModelFileError> {
+        let x = toml_file::number_or_angle(value.get_ref()).map_err(|found| {
+            self.invalid(
+                &value.span(),
+                key,
+                format!("must be a number, found {found}"),
+            )
+        })?;
+        if x.is_finite() {
+            Ok(x)
+        } else {
+            Err(self.invalid(&value.span(), key, format!("must be finite, found {x}")))
+        }
+    }
+
+    /// An expression: a number, or a string in the expression language.
+    fn expr(
+        &self,
+        key: &str,
+        value: &Spanned<toml::Value>,
+        graph: &mut Graph,
+        scope: &Names,
+    ) -> Result<Id, ModelFileError> {
+        let span = value.span();
+        match value.get_ref() {
+            toml::Value::Float(x) if x.is_finite() => Ok(graph.constant(*x)),
+            toml::Value::Integer(i) => Ok(graph.constant(*i as f64)),
+            toml::Value::String(s) => {
+                parse(s, graph, scope).map_err(|e| self.expression(key, &span, s, &e))
+            }
+            other => Err(self.invalid(
+                &span,
+                key,
+                format!(
+                    "must be an expression (a string such as \"m*g*l\") or a number, found {}",
+                    toml_file::describe(other)
+                ),
+            )),
+        }
+    }
+
+    fn expression(
+        &self,
+        key: &str,
+        span: &std::ops::Range<usize>,
+        s: &str,
+        e: &ParseError,
+    ) -> ModelFileError {
+        // The string's text starts after its opening quote(s); escapes may shift the column.
+        let raw = &self.text[span.start.min(self.text.len())..];
+        let quote = if raw.starts_with("\"\"\"") || raw.starts_with("'''") {
+            3
+        } else {
+            1
+        };
+        let at = Location::at(self.origin, self.text, span.start + quote + e.offset);
+        ModelFileError::Expression {
+            at,
+            key: key.to_string(),
+            message: e.message.clone(),
+            excerpt: e.excerpt(s),
+        }
+    }
+
+    fn vector(
+        &self,
+        key: &str,
+        value: &Spanned<Vec<Spanned<toml::Value>>>,
+        graph: &mut Graph,
+        scope: &Names,
+    ) -> Result<V3, ModelFileError> {
+        let list = value.get_ref();
+        if list.len() != 3 {
+            return Err(self.invalid(
+                &value.span(),
+                key,
+                format!("must be three expressions [x, y, z], found {}", list.len()),
+            ));
+        }
+        let mut out = [Id(0); 3];
+        for (i, v) in list.iter().enumerate() {
+            out[i] = self.expr(&format!("{key}[{}]", i + 1), v, graph, scope)?;
+        }
+        Ok(out)
+    }
+}
+
+fn domain(name: &str) -> Option<Domain> {
+    Some(match name {
+        "positive" => Domain::Positive,
+        "non-negative" => Domain::NonNegative,
+        "finite" => Domain::Finite,
+        "non-zero" => Domain::NonZero,
+        _ => return None,
+    })
+}
+
+fn axis(name: &str) -> Option<usize> {
+    match name {
+        "x" | "X" => Some(0),
+        "y" | "Y" => Some(1),
+        "z" | "Z" => Some(2),
+        _ => None,
+    }
+}
+
+/// A name that expressions can use: letters, digits and `_`, not starting with a digit, and not
+/// a built-in name.
+fn check_name(src: &Src<'_>, key: &str, name: &Spanned<String>) -> Result<(), ModelFileError> {
+    let s = name.get_ref();
+    let ok = s
+        .chars()
+        .next()
+        .is_some_and(|c| c.is_ascii_alphabetic() || c == '_')
+        && s.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
+    if !ok {
+        return Err(src.invalid(
+            &name.span(),
+            key,
+            format!("`{s}` cannot be used in expressions: use letters, digits and `_`, starting with a letter"),
+        ));
+    }
+    let builtin = s == "t"
+        || s == "pi"
+        || s == "atan2"
+        || s == "pow"
+        || crate::expr::Fun::ALL.iter().any(|(n, _)| *n == s);
+    if builtin {
+        return Err(src.invalid(
+            &name.span(),
+            key,
+            format!("`{s}` is a built-in name; choose another"),
+        ));
+    }
+    Ok(())
+}
+
+impl Model {
+    /// Reads the model file at `path`.
+    ///
+    /// # Errors
+    /// As [`Model::parse`]; an unreadable file, or one larger than [`MAX_FILE_BYTES`].
+    pub fn load(path: &Path) -> Result<Self, ModelFileError> {
+        Self::parse(&read_text(path)?, &path.display().to_string())
+    }
+
+    /// Parses model text; `origin` names it in messages and locates the files a `geometry`
+    /// table names.
+    ///
+    /// # Errors
+    /// A [`ModelFileError`] naming the key and its place: TOML syntax, unknown keys, an
+    /// expression that does not parse, an unknown name (listing those in scope), a duplicate
+    /// name, a frame whose parent is unknown or later, a body without mass properties, too many
+    /// coordinates, a model too large.
+    pub fn parse(text: &str, origin: &str) -> Result<Self, ModelFileError> {
+        let src = Src { origin, text };
+        if text.len() > MAX_FILE_BYTES {
+            return Err(src.invalid(
+                &(0..0),
+                "model",
+                format!(
+                    "the text is {} bytes, more than the {MAX_FILE_BYTES} a model may have",
+                    text.len()
+                ),
+            ));
+        }
+        let raw: RawFile = toml_file::parse(text, origin)?;
+        let mut graph = Graph::with_limit(MAX_NODES);
+        let mut taken: HashMap<String, String> = HashMap::new();
+        let mut claim =
+            |src: &Src<'_>, key: &str, name: &Spanned<String>| -> Result<(), ModelFileError> {
+                check_name(src, key, name)?;
+                if let Some(previous) = taken.insert(name.get_ref().clone(), key.to_string()) {
+                    return Err(src.invalid(
+                        &name.span(),
+                        key,
+                        format!("`{}` is already declared as `{previous}`", name.get_ref()),
+                    ));
+                }
+                Ok(())
+            };
+
+        // Parameters.
+        let mut params = Vec::new();
+        for (name, value) in ordered(raw.parameters) {
+            let key = format!("parameters.{}", name.get_ref());
+            claim(&src, &key, &name)?;
+            let def = match value.get_ref() {
+                toml::Value::Table(t) => {
+                    for k in t.keys() {
+                        if !["default", "unit", "domain", "description"].contains(&k.as_str()) {
+                            return Err(src.invalid(&value.span(), &format!("{key}.{k}"), "unknown key; a parameter takes `default`, `unit`, `domain` and `description`"));
+                        }
+                    }
+                    let Some(d) = t.get("default") else {
+                        return Err(src.invalid(&value.span(), &key, "needs a `default` value"));
+                    };
+                    let default = toml_file::number_or_angle(d).map_err(|found| {
+                        src.invalid(
+                            &value.span(),
+                            &format!("{key}.default"),
+                            format!("must be a number, found {found}"),
+                        )
+                    })?;
+                    let text_of = |k: &str| -> Result<String, ModelFileError> {
+                        match t.get(k) {
+                            None => Ok(String::new()),
+                            Some(toml::Value::String(s)) => Ok(s.clone()),
+                            Some(other) => Err(src.invalid(
+                                &value.span(),
+                                &format!("{key}.{k}"),
+                                format!("must be a string, found {}", toml_file::describe(other)),
+                            )),
+                        }
+                    };
+                    let dom = text_of("domain")?;
+                    let domain = if dom.is_empty() {
+                        Domain::Finite
+                    } else {
+                        domain(&dom).ok_or_else(|| src.invalid(&value.span(), &format!("{key}.domain"), format!("unknown domain {dom:?}; write \"positive\", \"non-negative\", \"finite\" or \"non-zero\"")))?
+                    };
+                    ParamDef {
+                        name: name.get_ref().clone(),
+                        default,
+                        unit: text_of("unit")?,
+                        domain,
+                        description: text_of("description")?,
+                    }
+                }
+                _ => ParamDef {
+                    name: name.get_ref().clone(),
+                    default: src.number(&key, &value)?,
+                    unit: String::new(),
+                    domain: Domain::Finite,
+                    description: String::new(),
+                },
+            };
+            if !def.domain.contains(def.default) {
+                return Err(src.invalid(
+                    &value.span(),
+                    &key,
+                    format!("the default {} {}", def.default, def.domain.requirement()),
+                ));
+            }
+            params.push(def);
+        }
+
+        // Coordinates.
+        let coordinates = ordered(raw.coordinates);
+        if coordinates.is_empty() {
+            return Err(src.invalid(
+                &raw.model.span(),
+                "coordinates",
+                "a model needs at least one coordinate: [coordinates] NAME = { initial = \"...\" }",
+            ));
+        }
+        if coordinates.len() > MAX_COORDINATES {
+            return Err(src.invalid(
+                &coordinates[MAX_COORDINATES].0.span(),
+                "coordinates",
+                format!(
+                    "{} coordinates: a model may have at most {MAX_COORDINATES}",
+                    coordinates.len()
+                ),
+            ));
+        }
+        let layout = Layout {
+            n: coordinates.len(),
+        };
+        let mut scope = Names::new();
+        for (j, p) in params.iter().enumerate() {
+            let id = graph.input(layout.param(j));
+            scope.insert(&p.name, id);
+        }
+        let param_scope = Names {
+            map: scope.map.clone(),
+            order: scope.order.clone(),
+        };
+        let mut initial = Vec::new();
+        let mut initial_rates = Vec::new();
+        let mut names = Vec::new();
+        for (i, (name, c)) in coordinates.iter().enumerate() {
+            let key = format!("coordinates.{}", name.get_ref());
+            claim(&src, &key, name)?;
+            let rate_name = Spanned::new(name.span(), format!("{}_dot", name.get_ref()));
+            claim(&src, &key, &rate_name)?;
+            let c = c.get_ref();
+            initial.push(src.expr(
+                &format!("{key}.initial"),
+                &c.initial,
+                &mut graph,
+                &param_scope,
+            )?);
+            initial_rates.push(match &c.rate {
+                Some(r) => src.expr(&format!("{key}.rate"), r, &mut graph, &param_scope)?,
+                None => graph.constant(0.0),
+            });
+            names.push(name.get_ref().clone());
+            let q = graph.input(layout.q(i));
+            scope.insert(name.get_ref(), q);
+        }
+        let t = graph.input(Layout::T);
+        scope.insert("t", t);
+
+        // Definitions.
+        for (name, value) in ordered(raw.definitions) {
+            let key = format!("definitions.{}", name.get_ref());
+            claim(&src, &key, &name)?;
+            let id = src.expr(&key, &value, &mut graph, &scope)?;
+            scope.insert(name.get_ref(), id);
+        }
+
+        // Rotating frame.
+        let mut alg_frame_omega: Option<V3> = None;
+        if let Some(r) = &raw.rotating_frame {
+            let w = src.vector(
+                "rotating_frame.omega",
+                &r.get_ref().omega,
+                &mut graph,
+                &scope,
+            )?;
+            alg_frame_omega = Some(w);
+        }
+
+        // Frames.
+        let mut frames: HashMap<String, (M3, V3)> = HashMap::new();
+        let mut chains: HashMap<String, Chain> = HashMap::new();
+        for (name, f) in ordered(raw.frames) {
+            let key = format!("frames.{}", name.get_ref());
+            if chains.contains_key(name.get_ref()) {
+                return Err(src.invalid(&name.span(), &key, "declared twice"));
+            }
+            let f = f.get_ref();
+            let mut links = match &f.parent {
+                None => Vec::new(),
+                Some(p) => chains
+                    .get(p.get_ref())
+                    .ok_or_else(|| {
+                        let known: Vec<_> = chains.keys().cloned().collect();
+                        src.invalid(&p.span(), &format!("{key}.parent"), format!("no frame `{}` declared before this one; frames declared before: {}", p.get_ref(), if known.is_empty() { "none".to_string() } else { known.join(", ") }))
+                    })?
+                    .links
+                    .clone(),
+            };
+            match (&f.angles, &f.rotations) {
+                (Some(angles), None) => {
+                    let convention = match &f.euler {
+                        None => EulerConvention::ARTICLE,
+                        Some(e) => e.get_ref().parse::<EulerConvention>().map_err(|_| {
+                            src.invalid(&e.span(), &format!("{key}.euler"), format!("unknown convention {:?}; write an axis sequence such as \"zyz\", \"zxz\", \"xyz\", optionally \"extrinsic-xyz\"", e.get_ref()))
+                        })?,
+                    };
+                    let a = src.vector(&format!("{key}.angles"), angles, &mut graph, &scope)?;
+                    let axes = convention.sequence.axes().map(|x| x.index());
+                    let own = match convention.kind {
+                        RotationKind::Intrinsic => {
+                            [(axes[0], a[0]), (axes[1], a[1]), (axes[2], a[2])]
+                        }
+                        RotationKind::Extrinsic => {
+                            [(axes[2], a[2]), (axes[1], a[1]), (axes[0], a[0])]
+                        }
+                    };
+                    links.extend(own);
+                }
+                (None, Some(rotations)) => {
+                    if let Some(e) = &f.euler {
+                        return Err(src.invalid(&e.span(), &format!("{key}.euler"), "names the convention of `angles`; a frame given by `rotations` takes none"));
+                    }
+                    for (k, r) in rotations.get_ref().iter().enumerate() {
+                        let rk = format!("{key}.rotations[{}]", k + 1);
+                        let (ax, angle) = r.get_ref();
+                        let ax = axis(ax).ok_or_else(|| {
+                            src.invalid(
+                                &r.span(),
+                                &rk,
+                                format!("unknown axis {ax:?}; write \"x\", \"y\" or \"z\""),
+                            )
+                        })?;
+                        let angle = src.expr(&rk, angle, &mut graph, &scope)?;
+                        links.push((ax, angle));
+                    }
+                }
+                _ => {
+                    return Err(src.invalid(&name.span(), &key, "needs `angles` (three Euler angles, with `euler` naming the convention, ZYZ by default) or `rotations` ([[axis, angle], ...]), one of them"));
+                }
+            }
+            let chain = Chain { links };
+            let mut alg = Algebra { g: &mut graph };
+            let r = chain.rotation(&mut alg);
+            let w = chain.omega_body(&mut alg, layout);
+            frames.insert(name.get_ref().clone(), (r, w));
+            chains.insert(name.get_ref().clone(), chain);
+        }
+        let frame_of = |src: &Src<'_>,
+                        key: &str,
+                        f: &Option<Spanned<String>>|
+         -> Result<Option<(M3, V3)>, ModelFileError> {
+            match f {
+                None => Ok(None),
+                Some(name) => frames
+                    .get(name.get_ref())
+                    .copied()
+                    .map(Some)
+                    .ok_or_else(|| {
+                        let mut known: Vec<_> = frames.keys().cloned().collect();
+                        known.sort();
+                        src.invalid(
+                            &name.span(),
+                            key,
+                            format!(
+                                "no frame `{}`; frames: {}",
+                                name.get_ref(),
+                                if known.is_empty() {
+                                    "none".to_string()
+                                } else {
+                                    known.join(", ")
+                                }
+                            ),
+                        )
+                    }),
+            }
+        };
+
+        // Kinetic and potential energy.
+        let mut kinetic_terms: Vec<Id> = Vec::new();
+        let mut potential_terms: Vec<Id> = Vec::new();
+        let extra = raw.lagrangian.unwrap_or_default();
+        let gravity = match &extra.gravity {
+            Some(g) => Some(src.vector("lagrangian.gravity", g, &mut graph, &scope)?),
+            None => None,
+        };
+        // ½ m |ṙ + Ω × r|² and −m g·r for a mass at r (model frame).
+        let translational =
+            |graph: &mut Graph, mass: Id, r: V3, kinetic: &mut Vec<Id>, potential: &mut Vec<Id>| {
+                let mut alg = Algebra { g: graph };
+                let mut v = alg.time_derivative3(r, layout);
+                if let Some(w) = alg_frame_omega {
+                    let wr = alg.cross(w, r);
+                    v = alg.add3(v, wr);
+                }
+                let v2 = alg.dot(v, v);
+                let half = alg.g.constant(0.5);
+                let hm = alg.g.mul(half, mass);
+                kinetic.push(alg.g.mul(hm, v2));
+                if let Some(g) = gravity {
+                    let gr = alg.dot(g, r);
+                    let mgr = alg.g.mul(mass, gr);
+                    potential.push(alg.g.neg(mgr));
+                }
+            };
+        let zero = graph.constant(0.0);
+        for (name, b) in ordered(raw.bodies) {
+            let key = format!("bodies.{}", name.get_ref());
+            let b = b.get_ref();
+            let frame = frame_of(&src, &format!("{key}.frame"), &b.frame)?;
+            let origin = match &b.origin {
+                Some(o) => src.vector(&format!("{key}.origin"), o, &mut graph, &scope)?,
+                None => [zero; 3],
+            };
+            let (mass, com, inertia) = match &b.geometry {
+                Some(geometry) => {
+                    for (k, present) in [
+                        ("mass", b.mass.is_some()),
+                        ("com", b.com.is_some()),
+                        ("inertia", b.inertia.is_some()),
+                    ] {
+                        if present {
+                            return Err(src.invalid(
+                                &geometry.span(),
+                                &format!("{key}.{k}"),
+                                "is computed from `geometry`; give one or the other",
+                            ));
+                        }
+                    }
+                    let props =
+                        read_mass_properties(src.origin, src.text, geometry).map_err(|e| {
+                            ModelFileError::Invalid {
+                                at: e.at,
+                                key: format!("{key}.geometry: {}", e.key),
+                                message: e.message,
+                                excerpt: String::new(),
+                            }
+                        })?;
+                    let c = props.center_of_mass();
+                    let i = props.inertia();
+                    let m = graph.constant(props.mass());
+                    let com = [c.x, c.y, c.z].map(|x| graph.constant(x));
+                    let mut inertia = [[zero; 3]; 3];
+                    for r in 0..3 {
+                        for s in 0..3 {
+                            inertia[r][s] = graph.constant(i[(r, s)]);
+                        }
+                    }
+                    (m, com, inertia)
+                }
+                None => {
+                    let Some(mass) = &b.mass else {
+                        return Err(src.invalid(&name.span(), &key, "needs a `mass` (with `inertia` and `com`) or a `geometry` table (the [body] vocabulary: mesh, points, shapes)"));
+                    };
+                    let mass = src.expr(&format!("{key}.mass"), mass, &mut graph, &param_scope)?;
+                    let com = match &b.com {
+                        Some(c) => {
+                            src.vector(&format!("{key}.com"), c, &mut graph, &param_scope)?
+                        }
+                        None => [zero; 3],
+                    };
+                    let mut inertia = [[zero; 3]; 3];
+                    if let Some(list) = &b.inertia {
+                        let ik = format!("{key}.inertia");
+                        let v: Vec<Id> = list
+                            .get_ref()
+                            .iter()
+                            .enumerate()
+                            .map(|(k, x)| {
+                                src.expr(&format!("{ik}[{}]", k + 1), x, &mut graph, &param_scope)
+                            })
+                            .collect::<Result<_, _>>()?;
+                        match v.len() {
+                            3 => (0..3).for_each(|k| inertia[k][k] = v[k]),
+                            6 => {
+                                (0..3).for_each(|k| inertia[k][k] = v[k]);
+                                for (k, (r, s)) in [(0, 1), (0, 2), (1, 2)].into_iter().enumerate() {
+                                    inertia[r][s] = v[3 + k];
+                                    inertia[s][r] = v[3 + k];
+                                }
+                            }
+                            found => return Err(src.invalid(&list.span(), &ik, format!("must be 3 principal moments or 6 entries [xx, yy, zz, xy, xz, yz] about the centre of mass, found {found}"))),
+                        }
+                    }
+                    (mass, com, inertia)
+                }
+            };
+            let (rc, omega) = match frame {
+                Some((r, w)) => {
+                    let mut alg = Algebra { g: &mut graph };
+                    let rcom = alg.mat_vec(&r, com);
+                    let rc = alg.add3(origin, rcom);
+                    let mut omega = w;
+                    if let Some(wf) = alg_frame_omega {
+                        let wb = alg.mat_t_vec(&r, wf);
+                        omega = alg.add3(omega, wb);
+                    }
+                    (rc, Some(omega))
+                }
+                None => {
+                    let mut alg = Algebra { g: &mut graph };
+                    let rc = alg.add3(origin, com);
+                    // A body that does not turn relative to a turning model frame turns with it.
+                    (rc, alg_frame_omega)
+                }
+            };
+            translational(
+                &mut graph,
+                mass,
+                rc,
+                &mut kinetic_terms,
+                &mut potential_terms,
+            );
+            if let Some(w) = omega {
+                let mut alg = Algebra { g: &mut graph };
+                let iw = alg.mat_vec(&inertia, w);
+                let wiw = alg.dot(w, iw);
+                let half = alg.g.constant(0.5);
+                kinetic_terms.push(alg.g.mul(half, wiw));
+            }
+        }
+        for (name, p) in ordered(raw.points) {
+            let key = format!("points.{}", name.get_ref());
+            let p = p.get_ref();
+            let frame = frame_of(&src, &format!("{key}.frame"), &p.frame)?;
+            let mass = src.expr(&format!("{key}.mass"), &p.mass, &mut graph, &param_scope)?;
+            let local = src.vector(&format!("{key}.position"), &p.position, &mut graph, &scope)?;
+            let origin = match &p.origin {
+                Some(o) => src.vector(&format!("{key}.origin"), o, &mut graph, &scope)?,
+                None => [zero; 3],
+            };
+            let mut alg = Algebra { g: &mut graph };
+            let r = match frame {
+                Some((rot, _)) => alg.mat_vec(&rot, local),
+                None => local,
+            };
+            let r = alg.add3(origin, r);
+            translational(
+                &mut graph,
+                mass,
+                r,
+                &mut kinetic_terms,
+                &mut potential_terms,
+            );
+        }
+        if let Some(v) = &extra.potential {
+            potential_terms.push(src.expr("lagrangian.potential", v, &mut graph, &scope)?);
+        }
+        let mut rate_scope = Names {
+            map: scope.map.clone(),
+            order: scope.order.clone(),
+        };
+        for (i, name) in names.iter().enumerate() {
+            let id = graph.input(layout.qd(i));
+            rate_scope.insert(&format!("{name}_dot"), id);
+        }
+        if let Some(v) = &extra.kinetic {
+            kinetic_terms.push(src.expr("lagrangian.kinetic", v, &mut graph, &rate_scope)?);
+        }
+        let mut outputs = Vec::new();
+        for (name, v) in ordered(raw.outputs) {
+            let key = format!("outputs.{}", name.get_ref());
+            claim(&src, &key, &name)?;
+            outputs.push((
+                name.get_ref().clone(),
+                src.expr(&key, &v, &mut graph, &rate_scope)?,
+            ));
+        }
+
+        let kinetic = graph.sum(&kinetic_terms);
+        let potential = graph.sum(&potential_terms);
+        let lagrangian = graph.sub(kinetic, potential);
+        let equations = equations(&mut graph, lagrangian, layout);
+        graph
+            .check()
+            .map_err(|e| src.invalid(&raw.model.span(), "model", e))?;
+
+        let header = raw.model.into_inner();
+        let model_name = header.name.get_ref().clone();
+        if model_name.is_empty() || model_name.chars().any(|c| c.is_control()) {
+            return Err(src.invalid(
+                &header.name.span(),
+                "model.name",
+                "must be a non-empty name on one line",
+            ));
+        }
+        let run = run_defaults(&src, raw.run.as_ref())?;
+        Ok(Model {
+            name: model_name,
+            summary: header.summary.unwrap_or_default(),
+            params,
+            coordinates: names,
+            graph,
+            layout,
+            equations,
+            initial,
+            initial_rates,
+            outputs,
+            run,
+            origin: origin.to_string(),
+        })
+    }
+}
+
+/// The text of the model file at `path`, refused unread when larger than [`MAX_FILE_BYTES`].
+///
+/// # Errors
+/// An unreadable or too large file.
+pub fn read_text(path: &Path) -> Result<String, ModelFileError> {
+    let size = std::fs::metadata(path).map(|m| m.len()).unwrap_or(0);
+    if size > MAX_FILE_BYTES as u64 {
+        return Err(ModelFileError::Invalid {
+            at: Location {
+                origin: path.display().to_string(),
+                position: None,
+            },
+            key: "model".to_string(),
+            message: format!(
+                "the file is {size} bytes, more than the {MAX_FILE_BYTES} a model may have"
+            ),
+            excerpt: String::new(),
+        });
+    }
+    Ok(toml_file::read(path, "model")?)
+}
+
+fn run_defaults(
+    src: &Src<'_>,
+    run: Option<&Spanned<RawRun>>,
+) -> Result<RunDefaults, ModelFileError> {
+    let mut options = RunOptions::default();
+    let mut out = RunDefaults {
+        integrator: "gauss8".to_string(),
+        dt: 0.01,
+        t_end: 10.0,
+        options: RunOptions::default(),
+    };
+    if let Some(run) = run {
+        let r = run.get_ref();
+        if let Some(name) = &r.integrator {
+            out.integrator.clone_from(name);
+        }
+        match (&r.dt, &r.tol) {
+            (Some(dt), None) => {
+                out.dt = src.number("run.dt", dt)?;
+                if !(out.dt > 0.0) {
+                    return Err(src.invalid(&dt.span(), "run.dt", "must be positive"));
+                }
+                options.step = Some(StepControl::Fixed(out.dt));
+            }
+            (None, Some(tol)) => {
+                let x = src.number("run.tol", tol)?;
+                if !(x > 0.0) {
+                    return Err(src.invalid(&tol.span(), "run.tol", "must be positive"));
+                }
+                options.step = Some(StepControl::Tolerance(x));
+            }
+            (Some(_), Some(tol)) => {
+                return Err(src.invalid(&tol.span(), "run.tol", "`run.dt` and `run.tol` are both given; a run has a fixed step or a tolerance, not both"));
+            }
+            (None, None) => {}
+        }
+        if let Some(t) = &r.t_end {
+            out.t_end = src.number("run.t_end", t)?;
+            if !(out.t_end > 0.0) {
+                return Err(src.invalid(&t.span(), "run.t_end", "must be positive"));
+            }
+        }
+    }
+    out.options = options;
+    Ok(out)
+}

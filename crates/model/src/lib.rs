@@ -1,0 +1,14 @@
+//! # tumble-model
+//!
+//! Models written as text: a TOML file declares parameters, generalized coordinates,
+//! orientations (Euler angles of any convention, chains of rotations about fixed axes), rigid
+//! bodies, point masses, a potential and gravity; the kinetic energy is assembled by the
+//! article's recipe and the equations of motion follow symbolically.
+
+pub mod expr;
+pub mod file;
+pub mod mechanics;
+pub mod scene;
+
+pub use file::{Model, ModelFileError};
+pub use scene::{ModelScene, from_text, is_model_file, is_model_text, load};

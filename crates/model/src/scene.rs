@@ -1,0 +1,502 @@
+//! A model as a scene: [`ModelScene`] implements [`tumble_scenarios::Scene`], so that every
+//! command, sweep and study that runs a built-in scene runs a model file, with the methods of
+//! the first-order kind ([`ProblemKind::Ode`]: the explicit pairs, `rk4`, Gauss–Legendre and
+//! its compositions).
+//!
+//! The state is `(q, q̇)`; each evaluation of the right-hand side runs the model's instruction
+//! tape (mass matrix and forces, [`crate::expr::tape`]) and solves `M q̈ = f` by Cholesky in
+//! a workspace allocated once per run.
+//!
+//! Rows: `t`, the coordinates, their rates, `energy` (the energy function
+//! `h = Σ q̇ᵢ ∂L/∂q̇ᵢ − L`: the energy, or the Jacobi integral of a driven or rotating model),
+//! `energy_rel_err`, the momentum `p_NAME` of each cyclic coordinate, then the model's outputs.
+//!
+//! [`Scene::info`] returns `&'static SceneInfo`: a model's info (and the names in it) is leaked
+//! once per distinct model text loaded ([`load`] and [`from_text`] keep one scene per text), so
+//! that a model is a scene like any other for as long as the program runs.
+
+use std::cell::RefCell;
+use std::collections::HashMap;
+use std::path::Path;
+use std::sync::{Mutex, OnceLock};
+
+use nalgebra::SVector;
+use tumble_integrators::{Ode, ProblemKind};
+use tumble_scenarios::scene::run_vector;
+use tumble_scenarios::{
+    ParamSpec, Params, Recorder, RunPlan, RunSummary, Scene, SceneError, SceneInfo,
+};
+
+use crate::expr::tape::Tape;
+use crate::file::{Model, ModelFileError};
+use crate::mechanics::cholesky_solve;
+
+/// The largest condition number of the mass matrix accepted at the initial state.
+pub const MAX_CONDITION: f64 = 1e10;
+
+/// A model file as a scene.
+#[derive(Debug)]
+pub struct ModelScene {
+    info: &'static SceneInfo,
+    model: Model,
+    /// Mass matrix (row-major) then forces.
+    rhs: Tape,
+    /// Energy, momenta of the cyclic coordinates, outputs.
+    row: Tape,
+    /// Initial coordinates then rates (of the parameters).
+    init: Tape,
+    /// Every momentum (for [`ModelScene::momenta`]).
+    momenta: Tape,
+}
+
+fn leak(s: String) -> &'static str {
+    Box::leak(s.into_boxed_str())
+}
+
+impl ModelScene {
+    /// The scene of a parsed model.
+    #[must_use]
+    pub fn new(model: Model) -> Self {
+        let layout = model.layout;
+        let n = layout.n;
+        let fixed = move |k: u32| layout.is_param(k);
+        let eq = &model.equations;
+        let (cyclic, autonomous) = symmetries(&model);
+        let mut outputs = eq.mass.clone();
+        outputs.extend_from_slice(&eq.force);
+        let rhs = Tape::with_fixed(&model.graph, &outputs, &fixed);
+        let mut row_out = vec![eq.energy];
+        let mut diagnostics = vec![leak("energy".into()), leak("energy_rel_err".into())];
+        let mut conserved = Vec::new();
+        if autonomous {
+            conserved.push(leak(
+                "energy function h = sum(q_dot dL/dq_dot) - L (energy, or Jacobi integral)".into(),
+            ));
+        }
+        for i in 0..n {
+            if cyclic[i] {
+                row_out.push(eq.momenta[i]);
+                let name = format!("p_{}", model.coordinates[i]);
+                conserved.push(leak(format!(
+                    "{name} (momentum of the cyclic coordinate {}, at the default parameters)",
+                    model.coordinates[i]
+                )));
+                diagnostics.push(leak(name));
+            }
+        }
+        for (name, id) in &model.outputs {
+            row_out.push(*id);
+            diagnostics.push(leak(name.clone()));
+        }
+        let row = Tape::with_fixed(&model.graph, &row_out, &fixed);
+        let mut init_out = model.initial.clone();
+        init_out.extend_from_slice(&model.initial_rates);
+        let init = Tape::new(&model.graph, &init_out);
+        let momenta = Tape::new(&model.graph, &eq.momenta);
+        let parameters: Vec<ParamSpec> = model
+            .params
+            .iter()
+            .map(|p| ParamSpec {
+                name: leak(p.name.clone()),
+                default: p.default,
+                unit: leak(p.unit.clone()),
+                description: leak(p.description.clone()),
+                domain: p.domain,
+            })
+            .collect();
+        let coordinates: Vec<&'static str> =
+            model.coordinates.iter().map(|c| leak(c.clone())).collect();
+        let info = Box::leak(Box::new(SceneInfo {
+            name: leak(model.name.clone()),
+            summary: leak(if model.summary.is_empty() {
+                format!("model file {}", model.origin)
+            } else {
+                model.summary.clone()
+            }),
+            coordinates: Box::leak(coordinates.into_boxed_slice()),
+            parameters: Box::leak(parameters.into_boxed_slice()),
+            conserved: Box::leak(conserved.into_boxed_slice()),
+            oracle: leak(format!("model file {}", model.origin)),
+            problems: &[ProblemKind::Ode],
+            needs_dense_output: false,
+            default_integrator: leak(model.run.integrator.clone()),
+            default_step: model.run.dt,
+            // Not measured: a model has no reference solution of its own.
+            default_error: f64::NAN,
+            default_t_end: model.run.t_end,
+            diagnostics: Box::leak(diagnostics.into_boxed_slice()),
+            rate_names: &[],
+        }));
+        ModelScene {
+            info,
+            model,
+            rhs,
+            row,
+            init,
+            momenta,
+        }
+    }
+
+    /// The model.
+    #[must_use]
+    pub fn model(&self) -> &Model {
+        &self.model
+    }
+
+    /// Instructions per right-hand-side evaluation (the tape's body).
+    #[must_use]
+    pub fn rhs_instructions(&self) -> usize {
+        self.rhs.len()
+    }
+
+    /// The inputs of the model's tapes at `params`: time, coordinates and rates zero.
+    fn inputs(&self, params: &Params) -> Vec<f64> {
+        let layout = self.model.layout;
+        let mut inputs = vec![0.0; layout.param(self.model.params.len()) as usize];
+        for (j, (_, value)) in params.iter().enumerate() {
+            inputs[layout.param(j) as usize] = value;
+        }
+        inputs
+    }
+
+    /// The initial state `(q, q̇)` at `params`.
+    #[must_use]
+    pub fn initial_state(&self, params: &Params) -> Vec<f64> {
+        let mut w = self.init.workspace();
+        self.init.run_all(&mut w, &self.inputs(params));
+        (0..self.init.outputs())
+            .map(|i| self.init.output(&w, i))
+            .collect()
+    }
+
+    /// The momenta `∂L/∂q̇` at `(t, q, q̇)` and `params`.
+    #[must_use]
+    pub fn momenta(&self, params: &Params, t: f64, state: &[f64]) -> Vec<f64> {
+        let mut inputs = self.inputs(params);
+        inputs[0] = t;
+        inputs[1..=state.len()].copy_from_slice(state);
+        let mut w = self.momenta.workspace();
+        self.momenta.run_all(&mut w, &inputs);
+        (0..self.momenta.outputs())
+            .map(|i| self.momenta.output(&w, i))
+            .collect()
+    }
+
+    /// The right-hand side at `params`, its workspace allocated here once.
+    #[must_use]
+    pub fn ode(&self, params: &Params) -> ModelOde<'_> {
+        let n = self.model.layout.n;
+        let mut slots = self.rhs.workspace();
+        let inputs = self.inputs(params);
+        let k = inputs.len().min(slots.len());
+        slots[..k].copy_from_slice(&inputs[..k]);
+        self.rhs.run_prelude(&mut slots);
+        ModelOde {
+            tape: &self.rhs,
+            n,
+            work: RefCell::new(Work {
+                slots,
+                m: vec![0.0; n * n],
+                b: vec![0.0; n],
+            }),
+        }
+    }
+
+    /// Refuses an initial state where the mass matrix is singular or ill-conditioned, naming
+    /// the coordinate along which it degenerates.
+    fn check_conditioning(&self, ode: &ModelOde<'_>, y: &[f64]) -> Result<(), SceneError> {
+        let n = self.model.layout.n;
+        let m = ode.mass_matrix(0.0, y);
+        let matrix = nalgebra::DMatrix::from_row_slice(n, n, &m);
+        let eigen = nalgebra::SymmetricEigen::new(matrix);
+        let (mut lo, mut hi) = (0, 0);
+        for i in 0..n {
+            if eigen.eigenvalues[i] < eigen.eigenvalues[lo] {
+                lo = i;
+            }
+            if eigen.eigenvalues[i] > eigen.eigenvalues[hi] {
+                hi = i;
+            }
+        }
+        let (min, max) = (eigen.eigenvalues[lo], eigen.eigenvalues[hi]);
+        let condition = if min > 0.0 { max / min } else { f64::INFINITY };
+        if condition.is_finite() && condition <= MAX_CONDITION && max > 0.0 {
+            return Ok(());
+        }
+        // The coordinate at fault: the one whose change most lifts the smallest eigenvalue
+        // (at gimbal lock the middle Euler angle, not the two angles that turn alike).
+        let v: Vec<f64> = eigen.eigenvectors.column(lo).iter().copied().collect();
+        let quadratic = |y: &[f64]| {
+            let m = ode.mass_matrix(0.0, y);
+            (0..n)
+                .map(|i| (0..n).map(|j| v[i] * m[i * n + j] * v[j]).sum::<f64>())
+                .sum::<f64>()
+        };
+        let base = quadratic(y);
+        let lift = |k: usize| {
+            let mut z = y.to_vec();
+            let mut best = 0.0f64;
+            for h in [1e-3, -1e-3] {
+                z[k] = y[k] + h;
+                best = best.max((quadratic(&z) - base).abs());
+            }
+            best
+        };
+        let fault = (0..n)
+            .max_by(|&a, &b| lift(a).total_cmp(&lift(b)))
+            .unwrap_or(0);
+        Err(SceneError::ModelRefused {
+            model: self.info.name.to_string(),
+            message: format!(
+                "the mass matrix is singular at the initial state (condition number {condition:e}, \
+                 above {MAX_CONDITION:e}); the coordinate at fault is `{}` (moving it \
+                 lifts the degenerate direction), at {} = {}. Euler angles lock where their middle angle \
+                 makes the first and third axes one (theta = 0 or pi for ZYZ): start away from \
+                 it, or choose a convention whose singularity the motion avoids; a coordinate \
+                 that carries no mass or inertia also makes M singular",
+                self.model.coordinates[fault], self.model.coordinates[fault], y[fault]
+            ),
+        })
+    }
+
+    fn run<const S: usize>(
+        &self,
+        params: &Params,
+        plan: &RunPlan,
+        y0: &[f64],
+        recorder: &mut dyn Recorder,
+    ) -> Result<RunSummary, SceneError> {
+        let ode = self.ode(params);
+        self.check_conditioning(&ode, y0)?;
+        let n = self.model.layout.n;
+        let columns = self.info.columns().len();
+        let mut row_w = self.row.workspace();
+        let inputs = self.inputs(params);
+        let k = inputs.len().min(row_w.len());
+        row_w[..k].copy_from_slice(&inputs[..k]);
+        self.row.run_prelude(&mut row_w);
+        let row_tape = &self.row;
+        let row = move |t: f64, y: &SVector<f64, S>, out: &mut [f64]| {
+            out[0] = t;
+            out[1..=2 * n].copy_from_slice(y.as_slice());
+            let inputs = row_tape.inputs();
+            if inputs > 0 {
+                row_w[0] = t;
+                let m = (inputs - 1).min(2 * n);
+                row_w[1..=m].copy_from_slice(&y.as_slice()[..m]);
+            }
+            row_tape.run(&mut row_w);
+            out[1 + 2 * n] = row_tape.output(&row_w, 0);
+            for i in 1..row_tape.outputs() {
+                out[2 + 2 * n + i] = row_tape.output(&row_w, i);
+            }
+        };
+        let y = SVector::<f64, S>::from_column_slice(y0);
+        run_vector(&ode, y, plan, columns, 1 + 2 * n, row, &mut [], recorder)
+    }
+}
+
+/// Which coordinates are cyclic and whether the Lagrangian is autonomous, by evaluating
+/// `∂L/∂qᵢ` and `∂L/∂t` at sample states (coordinates and rates in ±1.5, `t` in [0, 3]) at the
+/// default parameters: a derivative that vanishes symbolically, or to round-off
+/// (`≤ 1e-12 · (1 + |L|)`) at every sample (where it cancels only after simplification, as
+/// `sin² + cos²` does), marks a symmetry. The samples are fixed, so the answer is reproducible.
+fn symmetries(model: &Model) -> (Vec<bool>, bool) {
+    let eq = &model.equations;
+    let n = model.layout.n;
+    let mut outputs = eq.dl_dq.clone();
+    outputs.push(eq.dl_dt);
+    outputs.push(eq.lagrangian);
+    let tape = Tape::new(&model.graph, &outputs);
+    let mut w = tape.workspace();
+    let mut inputs = vec![0.0; model.layout.param(model.params.len()) as usize];
+    for (j, p) in model.params.iter().enumerate() {
+        inputs[model.layout.param(j) as usize] = p.default;
+    }
+    let mut cyclic: Vec<bool> = eq.dl_dq.iter().map(|_| true).collect();
+    let mut autonomous = true;
+    // A fixed low-discrepancy sequence (golden-ratio steps) over the state.
+    let mut x = std::f64::consts::FRAC_1_PI;
+    let mut next = || {
+        x = (x + 0.618_033_988_749_894_9).fract();
+        x
+    };
+    for _ in 0..8 {
+        inputs[0] = 3.0 * next();
+        for k in 0..2 * n {
+            inputs[1 + k] = 3.0 * next() - 1.5;
+        }
+        tape.run_all(&mut w, &inputs);
+        let scale = 1e-12 * (1.0 + tape.output(&w, n + 1).abs());
+        for i in 0..n {
+            let d = tape.output(&w, i);
+            cyclic[i] &= d.abs() <= scale;
+        }
+        autonomous &= tape.output(&w, n).abs() <= scale;
+    }
+    (cyclic, autonomous)
+}
+
+/// The workspace of one run's right-hand side.
+#[derive(Debug)]
+struct Work {
+    slots: Vec<f64>,
+    m: Vec<f64>,
+    b: Vec<f64>,
+}
+
+/// A model's first-order system `(q, q̇)' = (q̇, M⁻¹ f)` at fixed parameters.
+#[derive(Debug)]
+pub struct ModelOde<'a> {
+    tape: &'a Tape,
+    n: usize,
+    work: RefCell<Work>,
+}
+
+impl ModelOde<'_> {
+    fn evaluate(&self, t: f64, y: &[f64], w: &mut Work) {
+        let inputs = self.tape.inputs();
+        if inputs > 0 {
+            w.slots[0] = t;
+            let m = (inputs - 1).min(y.len());
+            w.slots[1..=m].copy_from_slice(&y[..m]);
+        }
+        self.tape.run(&mut w.slots);
+    }
+
+    /// `M(q, t)` at `(t, y)`, row-major.
+    #[must_use]
+    pub fn mass_matrix(&self, t: f64, y: &[f64]) -> Vec<f64> {
+        let w = &mut *self.work.borrow_mut();
+        self.evaluate(t, y, w);
+        (0..self.n * self.n)
+            .map(|i| self.tape.output(&w.slots, i))
+            .collect()
+    }
+
+    /// Writes `(q̇, q̈)` for the state `y = (q, q̇)` into `dy`; NaN accelerations where the mass
+    /// matrix is not positive definite (the driver then stops with the state).
+    pub fn rhs_slice(&self, t: f64, y: &[f64], dy: &mut [f64]) {
+        let n = self.n;
+        let w = &mut *self.work.borrow_mut();
+        self.evaluate(t, y, w);
+        let Work { slots, m, b } = w;
+        for i in 0..n * n {
+            m[i] = self.tape.output(slots, i);
+        }
+        for i in 0..n {
+            b[i] = self.tape.output(slots, n * n + i);
+        }
+        dy[..n].copy_from_slice(&y[n..2 * n]);
+        if cholesky_solve(m, b, n) > 0.0 {
+            dy[n..2 * n].copy_from_slice(b);
+        } else {
+            dy[n..2 * n].fill(f64::NAN);
+        }
+    }
+}
+
+impl<const S: usize> Ode<SVector<f64, S>> for ModelOde<'_> {
+    fn rhs(&self, t: f64, y: &SVector<f64, S>, dy: &mut SVector<f64, S>) {
+        self.rhs_slice(t, y.as_slice(), dy.as_mut_slice());
+    }
+}
+
+impl Scene for ModelScene {
+    fn info(&self) -> &'static SceneInfo {
+        self.info
+    }
+
+    fn simulate(
+        &self,
+        params: &Params,
+        plan: &RunPlan,
+        recorder: &mut dyn Recorder,
+    ) -> Result<RunSummary, SceneError> {
+        let y0 = self.initial_state(params);
+        if let Some(i) = y0.iter().position(|x| !x.is_finite()) {
+            let n = self.model.layout.n;
+            let what = if i < n {
+                format!("the initial value of `{}`", self.model.coordinates[i])
+            } else {
+                format!("the initial rate of `{}`", self.model.coordinates[i - n])
+            };
+            return Err(SceneError::ModelRefused {
+                model: self.info.name.to_string(),
+                message: format!("{what} is {} at these parameters", y0[i]),
+            });
+        }
+        match self.model.layout.n {
+            1 => self.run::<2>(params, plan, &y0, recorder),
+            2 => self.run::<4>(params, plan, &y0, recorder),
+            3 => self.run::<6>(params, plan, &y0, recorder),
+            4 => self.run::<8>(params, plan, &y0, recorder),
+            5 => self.run::<10>(params, plan, &y0, recorder),
+            _ => self.run::<12>(params, plan, &y0, recorder),
+        }
+    }
+}
+
+/// Models loaded so far, one scene per (origin, text).
+fn cache() -> &'static Mutex<HashMap<(String, String), &'static ModelScene>> {
+    static CACHE: OnceLock<Mutex<HashMap<(String, String), &'static ModelScene>>> = OnceLock::new();
+    CACHE.get_or_init(|| Mutex::new(HashMap::new()))
+}
+
+/// The scene of model text (named `origin` in messages; files it names are relative to
+/// `origin`'s directory). The same text and origin give the same scene.
+///
+/// # Errors
+/// As [`Model::parse`].
+pub fn from_text(text: &str, origin: &str) -> Result<&'static ModelScene, ModelFileError> {
+    let key = (origin.to_string(), text.to_string());
+    if let Some(scene) = cache().lock().map_err(|_| poisoned(origin))?.get(&key) {
+        return Ok(scene);
+    }
+    let scene: &'static ModelScene =
+        Box::leak(Box::new(ModelScene::new(Model::parse(text, origin)?)));
+    cache()
+        .lock()
+        .map_err(|_| poisoned(origin))?
+        .insert(key, scene);
+    Ok(scene)
+}
+
+fn poisoned(origin: &str) -> ModelFileError {
+    ModelFileError::Invalid {
+        at: tumble_scenarios::toml_file::Location {
+            origin: origin.to_string(),
+            position: None,
+        },
+        key: "model".to_string(),
+        message: "an earlier load of a model panicked".to_string(),
+        excerpt: String::new(),
+    }
+}
+
+/// The scene of the model file at `path`.
+///
+/// # Errors
+/// As [`Model::load`].
+pub fn load(path: &Path) -> Result<&'static ModelScene, ModelFileError> {
+    let text = crate::file::read_text(path)?;
+    from_text(&text, &path.display().to_string())
+}
+
+/// Whether TOML text is a model file (it has a `[model]` table) rather than a scene file.
+#[must_use]
+pub fn is_model_text(text: &str) -> bool {
+    text.lines().any(|l| {
+        let l = l.trim();
+        l == "[model]"
+            || l.starts_with("[model]")
+            || l.starts_with("model.")
+            || l.starts_with("model =")
+    })
+}
+
+/// Whether the file at `path` is a model file ([`is_model_text`]).
+#[must_use]
+pub fn is_model_file(path: &Path) -> bool {
+    std::fs::read_to_string(path).is_ok_and(|t| is_model_text(&t))
+}

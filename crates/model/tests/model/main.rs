@@ -1,0 +1,8 @@
+//! Tests of tumble-model: the expression graph, the mechanics, the shipped models against their
+//! built-in twins and against independent closed forms, and the model parser under mutation.
+
+mod expr;
+mod fuzz;
+mod models;
+mod support;
+mod twins;
