@@ -143,6 +143,38 @@ struct FailureJson {
     status: &'static str,
 }
 
+/// The model a sweep's points ran: the scene's reduction when it serves every metric and the
+/// method integrates it ([`SweepDefinition::reduction`]), else the scene's full model.
+#[derive(Serialize)]
+struct ModelJson {
+    name: &'static str,
+    reduced: bool,
+    rule: &'static str,
+    summary: &'static str,
+}
+
+impl ModelJson {
+    fn new(def: &SweepDefinition) -> Self {
+        let rule = "the scene's reduction runs when the scene has one, the method is a \
+                    vector-space method and every metric reads only the reduction's columns; \
+                    otherwise the full model";
+        match def.reduction() {
+            Some(r) => ModelJson {
+                name: r.name,
+                reduced: true,
+                rule,
+                summary: r.summary,
+            },
+            None => ModelJson {
+                name: "full",
+                reduced: false,
+                rule,
+                summary: def.scene.info().summary,
+            },
+        }
+    }
+}
+
 /// The self-check of a sweep.
 #[derive(Serialize)]
 struct SelfCheckJson {
@@ -275,6 +307,7 @@ pub struct SweepManifest {
     failures: Vec<FailureJson>,
     files: Vec<String>,
     integrator: &'static str,
+    model: ModelJson,
     ok: usize,
     points: u64,
     points_per_second: Option<f64>,
@@ -337,6 +370,7 @@ impl SweepManifest {
             failures,
             files,
             integrator: def.plan.integrator(),
+            model: ModelJson::new(def),
             points: report.total,
             points_per_second: (totals.computed > 0 && wall > 0.0)
                 .then(|| totals.computed as f64 / wall),

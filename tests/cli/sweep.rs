@@ -412,8 +412,9 @@ fn threads_are_clamped_to_the_points() {
     assert_eq!(manifest(&tmp.path().join("many"))["threads"], 6);
 }
 
-/// Every whole sweep checks itself: spread-out points (the grid's corners among them) again at
-/// half the step, the largest change of each metric in the summary and the manifest. A setting
+/// Every whole sweep checks itself: chosen points (the grid's corners, its steepest points and
+/// an even spread) again at half the step, the largest change found in the summary and of
+/// each metric in the manifest. A setting
 /// that does not resolve the metrics (Gauss–Legendre 2 at 0.05 s) exits with status 4 and says
 /// so; `--check off` skips the check.
 #[test]
@@ -423,7 +424,8 @@ fn a_sweep_states_how_far_its_metrics_converged() {
     let file = file.to_str().unwrap();
     let out = succeeds(tmp.path(), &["sweep", file, "-o", "good"]);
     let err = stderr(&out);
-    assert!(err.contains("self-check   metrics converged to"), "{err}");
+    assert!(err.contains("self-check   largest change"), "{err}");
+    assert!(err.contains("within the tolerance"), "{err}");
     let check = &manifest(&tmp.path().join("good"))["self_check"];
     assert_eq!(check["converged"], true);
     assert_eq!(check["dt"], 0.005);
@@ -439,7 +441,7 @@ fn a_sweep_states_how_far_its_metrics_converged() {
     let out = tumble_in(tmp.path(), &["sweep", file, "-o", "coarse", "--check", "3"]);
     assert_eq!(out.status.code(), Some(4), "{}", stderr(&out));
     let err = stderr(&out);
-    assert!(err.contains("self-check   metrics changed"), "{err}");
+    assert!(err.contains("self-check   largest change"), "{err}");
     assert!(err.contains("more than the tolerance"), "{err}");
     let check = &manifest(&tmp.path().join("coarse"))["self_check"];
     assert_eq!(check["converged"], false);

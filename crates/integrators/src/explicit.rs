@@ -192,7 +192,20 @@ impl<const S: usize> ExplicitRungeKutta<S> {
             k0_y: y0.zeros_like(),
             k0_t: f64::NAN,
             k0_valid: false,
+            coef: (0..dense_coefficients(self.table))
+                .map(|_| y0.zeros_like())
+                .collect(),
         }
+    }
+}
+
+/// How many vectors the dense output of `table` is a polynomial of (see
+/// [`ExplicitRkStepper::interpolate`]): `W_m` of the polynomial form, or `r_0 … r_{n−1}` of
+/// DOP853's.
+fn dense_coefficients<const S: usize>(table: &ExplicitTableau<S>) -> usize {
+    match table.dense_form {
+        DenseForm::Polynomial => table.dense.len(),
+        _ => 4 + table.dense.len(),
     }
 }
 
@@ -224,6 +237,9 @@ pub struct ExplicitRkStepper<const S: usize, Y> {
     k0_y: Y,
     k0_t: f64,
     k0_valid: bool,
+    /// The dense output's polynomial coefficients of the last step, formed once per step
+    /// (when it is first interpolated) and evaluated by Horner's rule at every time asked.
+    coef: Vec<Y>,
 }
 
 impl<const S: usize, Y: VectorState> ExplicitRkStepper<S, Y> {
@@ -420,7 +436,49 @@ impl<const S: usize, Y: VectorState> ExplicitRkStepper<S, Y> {
             problem.rhs(t0 + tab.c[i] * h, &self.ytmp, &mut self.k[i]);
             self.difference(i);
         }
+        self.dense_coefficients();
         self.dense_ready = true;
+    }
+
+    /// Forms [`Self::coef`] from the stages of the last step.
+    fn dense_coefficients(&mut self) {
+        let tab = self.table;
+        let h = self.h;
+        let n = self.y0.dim();
+        if tab.dense_form == DenseForm::Polynomial {
+            // W_m = h Σᵢ d_{m,i} kᵢ; the weights sum to [m = 0], so
+            // W_m = h (δ_{m0} k₁ + Σ_{i>1} d_{m,i} (kᵢ − k₁)).
+            for (m, row) in tab.dense.iter().enumerate() {
+                for i in 0..n {
+                    let mut w = if m == 0 { self.k[0].as_slice()[i] } else { 0.0 };
+                    for (j, &d) in row.iter().enumerate().skip(1) {
+                        if d != 0.0 {
+                            w += d * self.dk[j].as_slice()[i];
+                        }
+                    }
+                    self.coef[m].as_mut_slice()[i] = h * w;
+                }
+            }
+            return;
+        }
+        for i in 0..n {
+            let y0 = self.y0.as_slice()[i];
+            let r1 = self.y1.as_slice()[i] - y0;
+            let r2 = h * self.k[0].as_slice()[i] - r1;
+            let r3 = r1 - h * self.k[tab.fsal].as_slice()[i] - r2;
+            for (m, r) in [y0, r1, r2, r3].into_iter().enumerate() {
+                self.coef[m].as_mut_slice()[i] = r;
+            }
+            for (m, row) in tab.dense.iter().enumerate() {
+                let mut s = 0.0;
+                for (j, &d) in row.iter().enumerate() {
+                    if d != 0.0 {
+                        s += d * self.k[j].as_slice()[i];
+                    }
+                }
+                self.coef[4 + m].as_mut_slice()[i] = h * s;
+            }
+        }
     }
 }
 
@@ -535,55 +593,31 @@ impl<const S: usize, Y: VectorState, P: Ode<Y>> DenseOutput<P> for ExplicitRkSte
     fn interpolate(&mut self, problem: &P, t: f64, out: &mut Y) {
         self.ensure_dense(problem);
         let tab = self.table;
-        let h = self.h;
-        let theta = (t - self.t0) / h;
+        let theta = (t - self.t0) / self.h;
+        let o = out.as_mut_slice();
         if tab.dense_form == DenseForm::Polynomial {
-            // u(θ) = y + Σ_m θ^m W_m, W_m = h Σᵢ d_{m,i} kᵢ, by Horner's rule in θ.
-            // Σᵢ d_{m,i} = [m = 0] (the weights sum to θ): W_m = h (δ_{m0} k₁ + Σ_{i>1} d_{m,i} (kᵢ − k₁)).
-            let o = out.as_mut_slice();
-            for i in 0..o.len() {
-                let k0 = self.k[0].as_slice()[i];
+            // u(θ) = y + Σ_m θ^(m+1) W_m, by Horner's rule in θ.
+            for (i, o) in o.iter_mut().enumerate() {
                 let mut acc = 0.0;
-                for (m, row) in tab.dense.iter().enumerate().rev() {
-                    let mut w = if m == 0 { k0 } else { 0.0 };
-                    for (j, &d) in row.iter().enumerate().skip(1) {
-                        if d != 0.0 {
-                            w += d * self.dk[j].as_slice()[i];
-                        }
-                    }
-                    acc = theta * (h * w + acc);
+                for w in self.coef.iter().rev() {
+                    acc = theta * (w.as_slice()[i] + acc);
                 }
-                o[i] = self.y0.as_slice()[i] + acc;
+                *o = self.y0.as_slice()[i] + acc;
             }
             return;
         }
+        // DOP853's form: fold from the innermost term; r_m (1-based) is multiplied by θ' when
+        // m is even and by θ when m is odd.
         let theta1 = 1.0 - theta;
-        let n_r = 4 + tab.dense.len();
-        let o = out.as_mut_slice();
-        for i in 0..o.len() {
-            let y0 = self.y0.as_slice()[i];
-            let mut r = [0.0_f64; 12];
-            r[0] = y0;
-            r[1] = self.y1.as_slice()[i] - y0;
-            r[2] = h * self.k[0].as_slice()[i] - r[1];
-            r[3] = r[1] - h * self.k[tab.fsal].as_slice()[i] - r[2];
-            for (m, row) in tab.dense.iter().enumerate() {
-                let mut s = 0.0;
-                for (j, &d) in row.iter().enumerate() {
-                    if d != 0.0 {
-                        s += d * self.k[j].as_slice()[i];
-                    }
-                }
-                r[4 + m] = h * s;
-            }
-            // Fold from the innermost term: r_m (1-based) is multiplied by θ' when m is
-            // even and by θ when m is odd.
-            let mut acc = r[n_r - 1];
+        let n_r = self.coef.len();
+        for (i, o) in o.iter_mut().enumerate() {
+            let r = |m: usize| self.coef[m].as_slice()[i];
+            let mut acc = r(n_r - 1);
             for m in (1..n_r - 1).rev() {
                 let mult = if (m + 1) % 2 == 0 { theta1 } else { theta };
-                acc = r[m] + mult * acc;
+                acc = r(m) + mult * acc;
             }
-            o[i] = r[0] + theta * acc;
+            *o = r(0) + theta * acc;
         }
     }
 

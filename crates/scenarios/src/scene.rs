@@ -609,6 +609,34 @@ impl std::fmt::Display for Recommendation {
     }
 }
 
+/// A smaller model of a scene's motion, for runs that need only some of its columns (a sweep
+/// whose every metric reads them): fewer numbers integrated for the same motion.
+///
+/// Its rows hold [`Reduction::columns`] (a subset of the scene's, `t` first, the energy and its
+/// relative error among them) with the values the scene's own rows would hold for them; it
+/// integrates with the scene's vector-space methods ([`ProblemKind::Ode`]) and runs plans
+/// resolved for the scene.
+#[derive(Debug)]
+pub struct Reduction {
+    /// Its name (`euler-poisson`), as a manifest states it.
+    pub name: &'static str,
+    /// What it integrates, in a line.
+    pub summary: &'static str,
+    /// The columns of its rows, in the scene's order.
+    pub columns: &'static [&'static str],
+    /// Runs it, as [`Scene::simulate`] runs the scene (rows of [`Reduction::columns`]).
+    pub simulate: fn(&Params, &RunPlan, &mut dyn Recorder) -> Result<RunSummary, SceneError>,
+}
+
+impl Reduction {
+    /// Whether it can run `plan`: the plan integrates the scene as a first-order system in a
+    /// vector space (the Lie-group methods integrate the full rotation).
+    #[must_use]
+    pub fn runs(&self, plan: &RunPlan) -> bool {
+        plan.kind == ProblemKind::Ode
+    }
+}
+
 /// A built-in scene.
 pub trait Scene: Sync {
     /// Its documentation.
@@ -672,6 +700,12 @@ pub trait Scene: Sync {
     /// horizontal, spanning `x_range`), the others fixed at `params`. Empty by default.
     fn map_guides(&self, _params: &Params, _axes: &[&str], _x_range: (f64, f64)) -> Vec<Guide> {
         Vec::new()
+    }
+
+    /// A smaller model of the same motion for runs that need only some columns
+    /// ([`Reduction`]). `None` by default.
+    fn reduction(&self) -> Option<&'static Reduction> {
+        None
     }
 
     /// Which method to use, by purpose (accuracy band, long horizon), from the scene's measured

@@ -590,6 +590,10 @@ fn finish(
         plot::sweep::step_words(def.plan.step),
         def.plan.t_end
     );
+    match def.reduction() {
+        Some(r) => eprintln!("model        {}: {}", r.name, r.summary),
+        None => eprintln!("model        full ({})", def.scene.info().name),
+    }
     if command == "merge" {
         let t = report.compute.totals();
         eprintln!("merged       {} points", report.rows.len());
@@ -622,16 +626,28 @@ fn finish(
     let converged = match &self_check {
         Some(c) => {
             let ok = c.converged(tolerance);
+            let at = c
+                .physical_largest()
+                .and_then(|m| Some((m.metric.name(), m.index?)))
+                .map_or_else(String::new, |(name, i)| {
+                    let values: Vec<String> = def
+                        .axes
+                        .iter()
+                        .zip(def.point(i))
+                        .map(|(a, v)| format!("{} = {v}", a.parameter))
+                        .collect();
+                    format!(" ({name} at point {i}: {})", values.join(", "))
+                });
             eprintln!(
-                "self-check   metrics {} to {:.1e} ({} check points at {}){}",
-                if ok { "converged" } else { "changed" },
+                "self-check   largest change {:.1e}{at} over {} check points (the steepest, an \
+                 even spread, the corners) at {}: {}",
                 c.largest(),
                 c.points.len(),
                 plot::sweep::step_words(c.setting),
                 if ok {
-                    String::new()
+                    format!("within the tolerance {tolerance:.1e}")
                 } else {
-                    format!(", more than the tolerance {tolerance:.1e}")
+                    format!("more than the tolerance {tolerance:.1e}")
                 }
             );
             for m in &c.changes {

@@ -260,7 +260,7 @@ impl Ode<Flat> for FlatFreeHoop {
 
 /// Writes a row: t, quaternion (sign continuous along the run), α, body ω, α̇, energy,
 /// (relative error slot), L, tilt.
-fn write_row(
+pub(crate) fn write_row(
     model: &FreeHoop,
     t: f64,
     s: &CoupledState<1>,
@@ -476,6 +476,12 @@ impl Scene for FreeHoopScene {
 
     fn recommendations(&self) -> &'static [Recommendation] {
         &FREE_HOOP_RECOMMENDED
+    }
+
+    /// The Euler–Poisson reduction ([`super::euler_poisson`]): the tilt, the bead, `ω`, the
+    /// energy and `L_z` from `Γ = Rᵀ e_z`, `Π`, `α`, `p_α`.
+    fn reduction(&self) -> Option<&'static crate::scene::Reduction> {
+        Some(&super::euler_poisson::EULER_POISSON)
     }
 
     fn initial_rate(&self, params: &Params) -> Option<Result<f64, SceneError>> {

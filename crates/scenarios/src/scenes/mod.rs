@@ -3,6 +3,7 @@
 
 pub mod body;
 pub mod coriolis;
+pub mod euler_poisson;
 pub mod free_hoop;
 pub mod hoop;
 pub mod rigid;

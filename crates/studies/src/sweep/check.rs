@@ -1,11 +1,22 @@
-//! The self-check of a sweep: a deterministic, spread-out subset of its points run again at a
-//! tighter setting (half the step, or a tolerance 100 times smaller), and the largest change of
-//! each metric — how far the sweep's numbers can be trusted, stated with them.
+//! The self-check of a sweep: a deterministic subset of its points run again at a tighter
+//! setting (half the step, or a tolerance 100 times smaller), and the largest change of each
+//! metric — stated with the sweep's numbers as what it is: the largest change found.
 //!
-//! The subset is the corners of the grid (every combination of the first and last value of
-//! each axis; the first and last point of random samples) and points evenly spaced in index
-//! order, `max(8, 1 %)` by default or as many as asked. It depends only on the definition, so
-//! a resumed, sharded or merged sweep checks the same points.
+//! The errors of a map are not spread evenly: they are largest where the metric is most
+//! sensitive to the point's parameters (on the hoop-tilt map, along its streaks, where a tilt
+//! 50 times larger than the median one's error was measured). So on a grid the subset is
+//! * the corners (every combination of the first and last value of each axis);
+//! * the *steepest* points, half of the budget: every point is scored by its metrics' local
+//!   variation on the grid — per axis, the central difference (one-sided at an edge) plus the
+//!   second difference, each metric relative to its range over the sweep — and the highest
+//!   scores are taken, one per neighbourhood (a point next to one already taken is skipped, so
+//!   that the picks spread over every steep region rather than pile up on one);
+//! * points evenly spaced in index order, the other half.
+//!
+//! The budget is `max(8, 1 %)` of the points by default, or as many as asked. Random samples
+//! have no grid neighbours: their check is the first and last point and an even spread. The
+//! subset depends on the definition and the sweep's values alone (bit-for-bit deterministic),
+//! so a resumed, sharded or merged sweep checks the same points.
 
 use std::collections::BTreeMap;
 
@@ -65,6 +76,14 @@ impl CheckReport {
         self.physical().map(|c| c.max_change).fold(0.0, f64::max)
     }
 
+    /// The metric of the motion whose change is largest (`None` when none could be compared).
+    #[must_use]
+    pub fn physical_largest(&self) -> Option<&MetricChange> {
+        self.physical()
+            .filter(|c| c.index.is_some())
+            .max_by(|a, b| a.max_change.total_cmp(&b.max_change))
+    }
+
     /// Whether every metric of the motion changed by at most `tolerance` and no point changed
     /// its status or had a metric defined in one run only.
     #[must_use]
@@ -83,35 +102,153 @@ impl CheckReport {
     }
 }
 
-/// The points a self-check of `size` re-runs, increasing (a grid or random sweep: see
-/// [`check_points_among`] for a refined one).
+/// The points a self-check of `size` re-runs, increasing, chosen from the definition alone: the
+/// corners and an even spread (the part of [`check_points_among`] that does not need the
+/// sweep's values).
 #[must_use]
 pub fn check_points(def: &SweepDefinition, size: CheckSize) -> Vec<u64> {
     pick(def, size, def.points(), |k| k)
 }
 
-/// The points a self-check of `size` re-runs among a sweep's `rows` (in index order): for a
-/// refined sweep, whose points are not every point of its grid, the grid's corners (always
-/// points of its coarse level) and a spread in index order over the points it has; for others,
-/// [`check_points`]. A refined sweep's points depend on its definition alone, so this does too.
+/// How many points a self-check of `size` re-runs among `total`.
+fn budget(size: CheckSize, total: u64) -> u64 {
+    match size {
+        CheckSize::Off => 0,
+        CheckSize::Auto => (total / 100).max(8),
+        CheckSize::Points(n) => n,
+    }
+    .min(total)
+}
+
+/// The points a self-check of `size` re-runs for a sweep with these `rows` (its finished
+/// points, in index order), increasing: on a grid, the corners, the steepest half of the
+/// budget ([`steepest_points`]) and an even spread over the points the sweep has (all of the
+/// grid, or a refined sweep's points); for random samples, the first and last points and an
+/// even spread.
 #[must_use]
 pub fn check_points_among(def: &SweepDefinition, size: CheckSize, rows: &[PointRow]) -> Vec<u64> {
-    if def.refine.is_none() {
-        return check_points(def, size);
+    let wanted = budget(size, rows.len() as u64);
+    if wanted == 0 || rows.is_empty() {
+        return Vec::new();
     }
-    pick(def, size, rows.len() as u64, |k| {
+    let steep = if def.sampling == Sampling::Grid {
+        steepest_points(def, rows, (wanted / 2) as usize)
+    } else {
+        Vec::new()
+    };
+    let rest = CheckSize::Points(wanted - steep.len() as u64);
+    let mut points: std::collections::BTreeSet<u64> = pick(def, rest, rows.len() as u64, |k| {
         rows[usize::try_from(k).unwrap_or(usize::MAX).min(rows.len() - 1)].index
     })
+    .into_iter()
+    .collect();
+    points.extend(steep);
+    // Top up from the next steepest if the spread hit a steep point.
+    if (points.len() as u64) < wanted {
+        for k in steepest_points(def, rows, wanted as usize) {
+            if points.len() as u64 >= wanted {
+                break;
+            }
+            points.insert(k);
+        }
+    }
+    points.into_iter().collect()
+}
+
+/// The `n` points of a grid sweep where its metrics vary most (see the module's
+/// documentation), steepest first; fewer when fewer points have a neighbour on the grid.
+/// Only points that finished (`ok`) and metrics of the motion (not `max_energy_rel_err`)
+/// count; a neighbour missing from `rows` (a refined sweep's) is skipped.
+#[must_use]
+pub fn steepest_points(def: &SweepDefinition, rows: &[PointRow], n: usize) -> Vec<u64> {
+    if def.sampling != Sampling::Grid || n == 0 {
+        return Vec::new();
+    }
+    let counts: Vec<u64> = def.axes.iter().map(|a| a.count().unwrap_or(1)).collect();
+    // Index strides: the last axis is the fastest.
+    let strides: Vec<u64> = (0..counts.len())
+        .map(|j| counts[j + 1..].iter().product())
+        .collect();
+    let metrics: Vec<usize> = def
+        .metrics
+        .iter()
+        .enumerate()
+        .filter(|(_, m)| **m != Metric::MaxEnergyRelErr)
+        .map(|(k, _)| k)
+        .collect();
+    let value = |index: u64, k: usize| -> Option<f64> {
+        let i = rows.binary_search_by_key(&index, |r| r.index).ok()?;
+        let row = &rows[i];
+        (row.status == Status::Ok)
+            .then_some(row.metrics[k])
+            .flatten()
+            .filter(|v| v.is_finite())
+    };
+    // Each metric's range over the sweep, to compare metrics of different units.
+    let ranges: Vec<f64> = metrics
+        .iter()
+        .map(|&k| {
+            let (lo, hi) = rows
+                .iter()
+                .filter_map(|r| value(r.index, k))
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+                    (lo.min(v), hi.max(v))
+                });
+            hi - lo
+        })
+        .collect();
+    let mut scored: Vec<(f64, u64)> = Vec::new();
+    for row in rows {
+        let mut score = 0.0_f64;
+        for (&k, &range) in metrics.iter().zip(&ranges) {
+            let Some(f) = value(row.index, k) else {
+                continue;
+            };
+            if !(range > 0.0) {
+                continue;
+            }
+            for (j, &stride) in strides.iter().enumerate() {
+                let at = (row.index / stride) % counts[j];
+                let below = (at > 0).then(|| value(row.index - stride, k)).flatten();
+                let above = (at + 1 < counts[j])
+                    .then(|| value(row.index + stride, k))
+                    .flatten();
+                let local = match (below, above) {
+                    (Some(b), Some(a)) => 0.5 * (a - b).abs() + (a - 2.0 * f + b).abs(),
+                    (Some(x), None) | (None, Some(x)) => (x - f).abs(),
+                    (None, None) => 0.0,
+                };
+                score = score.max(local / range);
+            }
+        }
+        if score > 0.0 {
+            scored.push((score, row.index));
+        }
+    }
+    // Steepest first; ties by index, so the choice is deterministic.
+    scored.sort_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
+    let mut taken = std::collections::BTreeSet::new();
+    let mut chosen = Vec::with_capacity(n);
+    for &(_, index) in &scored {
+        if chosen.len() == n {
+            break;
+        }
+        let next_to_taken = strides.iter().enumerate().any(|(j, &stride)| {
+            let at = (index / stride) % counts[j];
+            (at > 0 && taken.contains(&(index - stride)))
+                || (at + 1 < counts[j] && taken.contains(&(index + stride)))
+        });
+        if !next_to_taken {
+            taken.insert(index);
+            chosen.push(index);
+        }
+    }
+    chosen
 }
 
 /// The corners of the grid and `total` candidates (the `k`-th is point `at(k)`) evenly spread.
 fn pick(def: &SweepDefinition, size: CheckSize, total: u64, at: impl Fn(u64) -> u64) -> Vec<u64> {
-    let wanted = match size {
-        CheckSize::Off => return Vec::new(),
-        CheckSize::Auto => (total / 100).max(8),
-        CheckSize::Points(n) => n,
-    }
-    .min(total);
+    let wanted = budget(size, total);
     let mut points = std::collections::BTreeSet::new();
     if wanted == 0 {
         return Vec::new();

@@ -10,7 +10,7 @@ use super::metrics::Metric;
 use super::overrides::Override;
 use super::refine::{Lattice, Refinement};
 use tumble_scenarios::params::Params;
-use tumble_scenarios::scene::{RunPlan, Scene, StepControl};
+use tumble_scenarios::scene::{Reduction, RunPlan, Scene, StepControl};
 use tumble_scenarios::toml_file;
 
 /// How the points of an axis given by a range are spread.
@@ -274,6 +274,24 @@ impl SweepDefinition {
     pub fn load(path: &Path, overrides: &[Override]) -> Result<Self, SweepFileError> {
         let text = toml_file::read(path, "sweep")?;
         Self::parse(&text, &path.display().to_string(), overrides)
+    }
+
+    /// The smaller model the sweep's points run, when there is one that serves: the scene's
+    /// [`Reduction`] if the plan's method integrates it (a vector-space method: the Lie-group
+    /// methods need the full rotation) and every metric reads only its columns
+    /// (`max_energy_rel_err` reads the energy, which every reduction has). `None`: the scene's
+    /// full model runs.
+    #[must_use]
+    pub fn reduction(&self) -> Option<&'static Reduction> {
+        let reduction = self.scene.reduction()?;
+        let served = self
+            .metrics
+            .iter()
+            .all(|m| match m.as_column(self.tilt_threshold) {
+                Some((_, column)) => reduction.columns.contains(&column),
+                None => *m == Metric::MaxEnergyRelErr,
+            });
+        (served && reduction.runs(&self.plan)).then_some(reduction)
     }
 
     /// The built-in hoop-tilt map ([`super::TILT_MAP`]) with `overrides`.

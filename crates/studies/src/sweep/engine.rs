@@ -141,12 +141,25 @@ fn metrics_of(def: &SweepDefinition, values: &[f64]) -> Result<Vec<Option<f64>>,
     for (axis, &v) in def.axes.iter().zip(values) {
         params.set(axis.parameter, v).map_err(|e| e.to_string())?;
     }
-    let mut recorder = MetricRecorder::new(def.scene, &params, &def.metrics, def.tilt_threshold)
-        .map_err(|e| e.to_string())?;
-    let summary = def
-        .scene
-        .simulate(&params, &def.plan, &mut recorder)
-        .map_err(|e| e.to_string())?;
+    // The scene's reduction when it serves every metric, else the scene itself.
+    let reduction = def.reduction();
+    let columns = reduction.map_or_else(
+        || def.scene.info().columns(),
+        |r| r.columns.iter().map(|c| (*c).to_string()).collect(),
+    );
+    let mut recorder = MetricRecorder::new(
+        def.scene,
+        columns,
+        &params,
+        &def.metrics,
+        def.tilt_threshold,
+    )
+    .map_err(|e| e.to_string())?;
+    let summary = match reduction {
+        Some(r) => (r.simulate)(&params, &def.plan, &mut recorder),
+        None => def.scene.simulate(&params, &def.plan, &mut recorder),
+    }
+    .map_err(|e| e.to_string())?;
     if let Some(failure) = recorder.failure() {
         return Err(failure.to_string());
     }

@@ -329,19 +329,20 @@ pub(crate) struct MetricRecorder {
 }
 
 impl MetricRecorder {
-    /// A recorder for `metrics` of `scene` run with `params`.
+    /// A recorder for `metrics` of `scene` run with `params`, whose rows hold `columns` (the
+    /// scene's, or its reduction's).
     ///
     /// # Errors
     /// The parameters of a torque-free body without a defined intermediate axis (`flips`); a
-    /// column the scene does not have.
+    /// column the rows do not have.
     pub(crate) fn new(
         scene: &dyn Scene,
+        columns: Vec<String>,
         params: &Params,
         metrics: &[Metric],
         tilt_threshold: Option<f64>,
     ) -> Result<Self, SceneError> {
         let info = scene.info();
-        let columns = info.columns();
         let find = |name: &str| columns.iter().position(|c| c == name);
         let mut trackers = Vec::new();
         for (i, m) in metrics.iter().enumerate() {

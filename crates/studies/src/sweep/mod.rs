@@ -100,6 +100,7 @@ use std::path::PathBuf;
 
 pub use check::{
     CheckReport, CheckSize, MetricChange, check_points, check_points_among, self_check,
+    steepest_points,
 };
 pub use compare::{MetricDifference, SweepDiff, diff, diff_folders, read_folder};
 pub use compute::{COMPUTE, ComputeRecord, ComputeRun, ComputeTotals};
