@@ -765,7 +765,12 @@ fn run_error_and_record(dir: &Path, args: &[&str]) -> (f64, serde_json::Value, S
     let scene = find(args[1]).unwrap();
     let info = scene.info();
     let last = rows.last().unwrap();
-    let n = info.coordinates.len() + info.rate_names.len().max(info.coordinates.len());
+    let rates = if info.rate_names.is_empty() {
+        info.coordinates.len()
+    } else {
+        info.rate_names.len()
+    };
+    let n = info.coordinates.len() + rates;
     let ours = tumble_scenarios::scene::FinalState {
         t: last[0],
         values: last[1..=n].to_vec(),

@@ -152,6 +152,26 @@ pub fn check_points_among(def: &SweepDefinition, size: CheckSize, rows: &[PointR
             points.insert(k);
         }
     }
+    // Still short (steep points of one neighbourhood are taken once): the budget is filled
+    // with points spread over the rows, halving the spacing until it is met, so that a budget
+    // as large as the sweep checks every point.
+    let n = rows.len();
+    let mut m = 1;
+    while (points.len() as u64) < wanted && m <= n {
+        for i in 0..m {
+            if points.len() as u64 >= wanted {
+                break;
+            }
+            points.insert(rows[(2 * i + 1) * n / (2 * m)].index);
+        }
+        m *= 2;
+    }
+    for r in rows {
+        if points.len() as u64 >= wanted {
+            break;
+        }
+        points.insert(r.index);
+    }
     points.into_iter().collect()
 }
 
