@@ -121,8 +121,9 @@ impl EulerPoissonHoop {
         ([wx, wy, wz], adot)
     }
 
-    /// Writes the row of `(t, y)` in [`COLUMNS`] order (the relative energy error's slot is
-    /// left for the run to fill).
+    /// Writes the row of `(t, y)` in [`COLUMNS`] order; the relative energy error's slot gets
+    /// the energy's magnitude, `T` plus the potential's amplitude `m g a`, as the full model's
+    /// rows do (the energy scale of [`crate::scene::run_vector`]).
     pub fn row(&self, t: f64, y: &State, out: &mut [f64]) {
         let (s, c) = y[6].sin_cos();
         let (w, adot) = self.velocities(y, s, c);
@@ -137,7 +138,7 @@ impl EulerPoissonHoop {
             w[2],
             adot,
             kinetic + potential,
-            0.0,
+            kinetic.abs() + self.k.abs(),
             y[0] * y[3] + y[1] * y[4] + y[2] * y[5],
             (y[2] / gamma).abs().min(1.0).asin(),
         ];

@@ -381,7 +381,16 @@ fn hoop_metrics_agree_with_the_trajectory() {
         "{max} {sampled_max}"
     );
     assert_eq!(last, Some(*samples.last().unwrap()));
-    assert_eq!(energy, Some(summary.max_energy_rel_err));
+    // The sweep runs the Euler–Poisson reduction (its metrics read only the tilt, the bead and
+    // the energy), whose energy is summed from other numbers than the full model's: the two
+    // largest relative errors agree to round-off, not bit for bit.
+    assert!(def.reduction().is_some());
+    let energy = energy.unwrap();
+    assert!(
+        energy < 1e-14 && (energy - summary.max_energy_rel_err).abs() < 1e-15,
+        "{energy:e} {:e}",
+        summary.max_energy_rel_err
+    );
     // The crossing lies between the samples that cross the threshold.
     let t = crossing.unwrap();
     let k = samples.iter().position(|&s| s > 0.01).unwrap();
