@@ -53,6 +53,19 @@ pub fn signal(pid: u32, name: &str) {
     assert!(ok, "kill -{name} failed");
 }
 
+/// Starts `tumble args` in `dir` in the background (stdin and stdout null, stderr piped).
+pub fn start(dir: &Path, args: &[&str]) -> std::process::Child {
+    Command::new(env!("CARGO_BIN_EXE_tumble"))
+        .current_dir(dir)
+        .args(args)
+        .env("RUST_BACKTRACE", "0")
+        .stdin(Stdio::null())
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("cannot run the tumble binary")
+}
+
 /// Starts `tumble args` in `dir`, waits for `ready`, sends `signal` and waits for the end;
 /// (exit code, stderr).
 pub fn interrupt(
@@ -61,15 +74,7 @@ pub fn interrupt(
     ready: impl Fn() -> bool,
     signal_name: &str,
 ) -> (Option<i32>, String) {
-    let child = Command::new(env!("CARGO_BIN_EXE_tumble"))
-        .current_dir(dir)
-        .args(args)
-        .env("RUST_BACKTRACE", "0")
-        .stdin(Stdio::null())
-        .stdout(Stdio::null())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("cannot run the tumble binary");
+    let child = start(dir, args);
     wait_for("the run to start", ready);
     signal(child.id(), signal_name);
     let out = child.wait_with_output().expect("cannot wait for tumble");

@@ -8,7 +8,7 @@ use std::process::{Command, Stdio};
 use std::time::Duration;
 
 use super::{listing, run_in};
-use crate::support::{interrupt, no_panic, signal, wait_for};
+use crate::support::{interrupt, no_panic, signal, start, wait_for};
 
 /// The number of signal cases below (for the suite's count).
 pub const CASES: usize = 8;
@@ -207,9 +207,9 @@ fn a_second_signal_leaves_no_lock_and_no_temporary_file() {
         let tmp = tempfile::tempdir().unwrap();
         let dir = tmp.path();
         std::fs::write(dir.join("s.sweep.toml"), LONG_SWEEP).unwrap();
-        let child = Command::new(env!("CARGO_BIN_EXE_tumble"))
-            .current_dir(dir)
-            .args([
+        let child = start(
+            dir,
+            &[
                 "sweep",
                 "s.sweep.toml",
                 "-o",
@@ -218,13 +218,8 @@ fn a_second_signal_leaves_no_lock_and_no_temporary_file() {
                 "1",
                 "--check",
                 "off",
-            ])
-            .env("RUST_BACKTRACE", "0")
-            .stdin(Stdio::null())
-            .stdout(Stdio::null())
-            .stderr(Stdio::piped())
-            .spawn()
-            .expect("cannot run the tumble binary");
+            ],
+        );
         wait_for("the sweep to start", || journal_lines(dir) > 4);
         signal(child.id(), "INT");
         signal(child.id(), second);
