@@ -1,18 +1,21 @@
-//! `tumble animate`: a scene in motion as an animated GIF (or an MP4, encoded by `ffmpeg` when
-//! it is installed) — the hoop as a ring with its bead, the free body as its equivalent box,
-//! the T-handle as the outline of its mesh, the top as its axis and disk — with a trail and a
-//! readout of the time and the energy error. Frames are the scene's rows at equal times, from
-//! the integrator's dense output (`--at`), so the animation does not depend on the steps.
+//! `tumble animate`: a scene in motion as an animated GIF, or an MP4 for slides (encoded by
+//! `ffmpeg` when it is installed), drawn as `tumble view` draws it — the bodies shaded in 3D
+//! (the hoop as a torus with its bead, the free body as its equivalent box, the T-handle's
+//! mesh, the top's axis and disk, a scene file's `[body]`), the lab and body axes, the ω and L
+//! arrows and a smooth trail — with a readout of the time and the energy error. Frames are the
+//! scene's rows at equal times from the integrator's dense output (`--at`); the trail passes
+//! through rows at least eight times as dense (and 4000 over the run at least). The animation
+//! does not depend on the steps.
 
 use std::path::PathBuf;
 
 use anyhow::{Result, bail};
-use plotters::style::RGBColor;
 use tumble_integrators::Flow;
-use tumble_scenarios::{Params, Recorder, RunOptions, Scene};
+use tumble_scenarios::{Recorder, RunOptions};
 
 use super::simulate::{LoadedScene, SceneArgs, load_scene};
-use crate::plot::animation::{Line, Shot, View, circle, write_gif};
+use crate::plot::animation::{Captions, Container, caption, write};
+use crate::view::render::{Canvas, Renderer};
 
 /// Flags of `tumble animate`.
 #[derive(clap::Args, Debug)]
@@ -30,10 +33,10 @@ pub struct Args {
     /// Playing time of the animation in seconds [default: the simulated time, at most 20 s].
     #[arg(long, value_name = "SECONDS")]
     pub duration: Option<f64>,
-    /// Frame size in pixels, `WxH`.
-    #[arg(long, value_name = "WxH", default_value = "640x480")]
-    pub size: String,
-    /// Output file: `.gif`, or `.mp4` (encoded by ffmpeg, which must be installed).
+    /// Frame size in pixels, `WxH` [default: 640x480 for a GIF, 1280x720 for an MP4].
+    #[arg(long, value_name = "WxH")]
+    pub size: Option<String>,
+    /// Output file: `.gif`, or `.mp4` (H.264, encoded by ffmpeg, which must be installed).
     #[arg(
         short = 'o',
         long = "output",
@@ -56,6 +59,12 @@ impl Recorder for Rows {
 
 /// Most frames an animation may have.
 const MAX_FRAMES: u64 = 10_000;
+/// Fewest rows per frame interval: the trail passes through them.
+const TRAIL_ROWS: usize = 8;
+/// Fewest rows over the run (a short animation of a fast body still has a smooth trail).
+const TRAIL_POINTS: usize = 4000;
+/// Device pixels per frame pixel while drawing (averaged down: smooth edges).
+const SUPERSAMPLE: u32 = 2;
 
 /// Runs the subcommand.
 ///
@@ -67,7 +76,36 @@ pub fn run(args: &Args) -> Result<()> {
     // output is then not written.
     crate::signals::flag();
     let csv = args.target.scene.to_ascii_lowercase().ends_with(".csv");
-    let (scene, params, saved) = if csv {
+    let ext = args
+        .output
+        .extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase());
+    let container = match ext.as_deref() {
+        Some("gif") => Container::Gif,
+        Some("mp4") => Container::Mp4,
+        _ => bail!(
+            "{}: expected a .gif file (or .mp4 with ffmpeg installed)",
+            args.output.display()
+        ),
+    };
+    let (w, h) = match (&args.size, container) {
+        (Some(text), _) => parse_size(text)?,
+        (None, Container::Gif) => (640, 480),
+        (None, Container::Mp4) => (1280, 720),
+    };
+    if container == Container::Mp4 && (w % 2 != 0 || h % 2 != 0) {
+        bail!("--size {w}x{h}: an MP4's sides are even numbers of pixels, e.g. 1280x720");
+    }
+    if container == Container::Mp4 {
+        ffmpeg_present(&args.output)?;
+    }
+    if !(args.fps.is_finite() && args.fps > 0.0 && args.fps <= 100.0) {
+        bail!(
+            "--fps {}: expected a number of frames per second in (0, 100]",
+            args.fps
+        );
+    }
+    let (scene, params, saved, drawing) = if csv {
         if !args.target.set.is_empty() {
             bail!("--set changes a simulation's parameters; a saved CSV keeps its own");
         }
@@ -77,35 +115,16 @@ pub fn run(args: &Args) -> Result<()> {
         let path = std::path::Path::new(&args.target.scene);
         let (record_path, record) = super::plot::simulation_record(path)?;
         let (scene, params) = super::plot::scene_and_parameters(&record, &record_path)?;
+        let drawing = super::view::drawing_of(None, scene.info().name, &params)?;
         let saved = super::plot::read_columns(path)?;
-        (scene, params, Some((saved, record)))
+        (scene, params, Some((saved, record)), drawing)
     } else {
         let LoadedScene { scene, params, .. } = load_scene(&args.target)?;
-        (scene, params, None)
+        let drawing =
+            super::view::drawing_of(Some(&args.target.scene), scene.info().name, &params)?;
+        (scene, params, None, drawing)
     };
     let info = scene.info();
-    let ext = args
-        .output
-        .extension()
-        .map(|e| e.to_string_lossy().to_ascii_lowercase());
-    let mp4 = match ext.as_deref() {
-        Some("gif") => false,
-        Some("mp4") => {
-            ffmpeg_present(&args.output)?;
-            true
-        }
-        _ => bail!(
-            "{}: expected a .gif file (or .mp4 with ffmpeg installed)",
-            args.output.display()
-        ),
-    };
-    let (w, h) = parse_size(&args.size)?;
-    if !(args.fps.is_finite() && args.fps > 0.0 && args.fps <= 100.0) {
-        bail!(
-            "--fps {}: expected a number of frames per second in (0, 100]",
-            args.fps
-        );
-    }
     let t_end = match &saved {
         Some(((_, values), _)) => match values.first().map(Vec::as_slice) {
             Some([first, .., last]) if last > first => last - first,
@@ -127,11 +146,16 @@ pub fn run(args: &Args) -> Result<()> {
             args.fps
         );
     }
-    let painter = Painter::of(scene, &params)?;
     crate::output::check_all([("-o", args.output.as_path())])?;
 
-    let times: Vec<f64> = (0..frames)
-        .map(|k| t_end * k as f64 / (frames - 1).max(1) as f64)
+    // Rows at the frames' times and `per_frame - 1` times between each two: at least
+    // TRAIL_ROWS, and at least TRAIL_POINTS over the run.
+    let frames = frames as usize;
+    let intervals = (frames - 1).max(1);
+    let per_frame = TRAIL_ROWS.max(TRAIL_POINTS.div_ceil(intervals));
+    let dense = per_frame * intervals;
+    let times: Vec<f64> = (0..=dense)
+        .map(|k| t_end * k as f64 / dense as f64)
         .collect();
     let (rows, columns, integrator) = match saved {
         Some(((columns, values), record)) => {
@@ -151,85 +175,50 @@ pub fn run(args: &Args) -> Result<()> {
             (rows.0, info.columns(), plan.integrator().to_string())
         }
     };
-    let col = |name: &str| columns.iter().position(|c| c == name);
-    let energy = col("energy_rel_err");
-    let mut trail: Vec<[f64; 3]> = Vec::new();
-    let shots: Vec<Shot> = rows
-        .iter()
-        .map(|row| {
-            let mut shot = painter.shot(row, &col);
-            if let Some(&tip) = shot.dots.first().map(|(p, _, _)| p) {
-                trail.push(tip);
-                let keep = trail.len().saturating_sub(3 * args.fps as usize);
-                shot.lines.insert(
-                    0,
-                    Line {
-                        points: trail[keep..].to_vec(),
-                        colour: RGBColor(0xE6, 0x9F, 0x00),
-                        width: 1,
-                    },
-                );
-            }
-            shot.caption = format!(
+    let poses = drawing.frames(&columns, &rows)?;
+    let energy = columns.iter().position(|c| c == "energy_rel_err");
+    let title = format!("{}: {integrator}", info.name);
+    let big = (w * SUPERSAMPLE, h * SUPERSAMPLE);
+    let renderer = Renderer::new(&drawing, big, f64::from(SUPERSAMPLE));
+    let mut canvas = Canvas::new(big);
+    // Frame k is row k·per_frame (the last row, when one frame only).
+    let row_of = |k: usize| (k * per_frame).min(rows.len() - 1);
+    write(
+        &args.output,
+        container,
+        (w, h),
+        args.fps,
+        frames,
+        &mut |k, rgb| {
+            let r = row_of(k);
+            let labels = renderer.draw(&mut canvas, &poses, r, &poses.trail[..=r]);
+            let row = &rows[r];
+            let text = format!(
                 "t = {:.2} s{}",
                 row[0],
-                energy.map_or(String::new(), |k| format!(
+                energy.map_or(String::new(), |e| format!(
                     "    relative energy error {:.1e}",
-                    row[k]
+                    row[e]
                 ))
             );
-            shot
-        })
-        .collect();
-    let view = View {
-        size: (w, h),
-        azimuth: 0.6,
-        elevation: 0.35,
-        radius: painter.radius,
-    };
-    let title = format!("{}: {integrator}", info.name);
-    if mp4 {
-        // The GIF's frames (a temporary file), encoded by ffmpeg (even dimensions, yuv420p:
-        // what players take) into a file beside the output, renamed over it when complete.
-        let gif = tempfile::Builder::new().suffix(".gif").tempfile()?;
-        write_gif(gif.path(), &view, &title, &shots, args.fps)?;
-        let dest = crate::output::Destination::check(&args.output)?;
-        let scratch = dest.scratch()?;
-        let status = std::process::Command::new("ffmpeg")
-            .args(["-y", "-loglevel", "error", "-i"])
-            .arg(gif.path())
-            .args([
-                "-vf",
-                "scale=trunc(iw/2)*2:trunc(ih/2)*2",
-                "-pix_fmt",
-                "yuv420p",
-                "-movflags",
-                "+faststart",
-                "-f",
-                "mp4",
-            ])
-            .arg(scratch.as_os_str())
-            .status()?;
-        if let Some(code) = crate::signals::interrupted() {
-            return Err(crate::signals::Interrupted {
-                code,
-                message: format!("{} was not written", args.output.display()),
-            }
-            .into());
-        }
-        if !status.success() {
-            bail!("{}: ffmpeg failed ({status})", args.output.display());
-        }
-        dest.commit_scratch(scratch)?;
-    } else {
-        write_gif(&args.output, &view, &title, &shots, args.fps)?;
-    }
+            caption(
+                &mut canvas.rgb,
+                big,
+                f64::from(SUPERSAMPLE),
+                &Captions {
+                    title: &title,
+                    caption: &text,
+                    labels: &labels,
+                },
+            )?;
+            rgb.copy_from_slice(&crate::plot::downsample(&canvas.rgb, (w, h), SUPERSAMPLE));
+            Ok(())
+        },
+    )?;
     eprintln!(
-        "animation    {} frames of {} over t in [0, {t_end}] s, {:.1} s at {} fps",
-        shots.len(),
-        info.name,
-        duration,
-        args.fps
+        "animation    {frames} frames of {} over t in [0, {t_end}] s, {duration:.1} s at {} fps, \
+         {w}x{h}",
+        info.name, args.fps
     );
     eprintln!("output       {}", args.output.display());
     Ok(())
@@ -274,43 +263,6 @@ fn ffmpeg_present(output: &std::path::Path) -> Result<()> {
     Ok(())
 }
 
-/// The `dzhanibekov` scene's T-handle: the outline of its mesh (front cap, corners 0–7, and
-/// back cap, 8–15, as [`tumble_inertia::THandle::mesh`] orders them) about its centre of mass,
-/// in the frame its orientation rotates; the trail follows the intermediate principal axis,
-/// the one it flips about.
-fn t_handle() -> Result<Painter> {
-    use tumble_inertia::{MassSpec, THandle};
-    let mesh = THandle::STANDARD.mesh()?;
-    let props = THandle::STANDARD.mass_properties(MassSpec::TotalMass(1.0))?;
-    let c = props.center_of_mass();
-    let v: Vec<[f64; 3]> = mesh
-        .vertices()
-        .iter()
-        .map(|p| [p.x - c.x, p.y - c.y, p.z - c.z])
-        .collect();
-    if v.len() != 16 {
-        bail!("the T-handle mesh has {} vertices, not 16", v.len());
-    }
-    let reach = v
-        .iter()
-        .map(|p| p.iter().map(|x| x * x).sum::<f64>().sqrt())
-        .fold(0.0, f64::max);
-    let closed = |k: std::ops::Range<usize>| {
-        let mut l = v[k.clone()].to_vec();
-        l.push(v[k.start]);
-        l
-    };
-    let axis = props.principal().axes.matrix().column(1).into_owned() * 1.1 * reach;
-    Ok(Painter {
-        look: Look::Prism {
-            front: closed(0..8),
-            back: closed(8..16),
-            tip: [axis.x, axis.y, axis.z],
-        },
-        radius: 1.3 * reach,
-    })
-}
-
 /// `WxH` in pixels, each 64…4096.
 fn parse_size(text: &str) -> Result<(u32, u32)> {
     let parsed = text
@@ -319,193 +271,5 @@ fn parse_size(text: &str) -> Result<(u32, u32)> {
     match parsed {
         Some((w, h)) if (64..=4096).contains(&w) && (64..=4096).contains(&h) => Ok((w, h)),
         _ => bail!("--size {text}: expected WxH in pixels, each 64 to 4096, e.g. 640x480"),
-    }
-}
-
-/// What a scene's body looks like.
-enum Look {
-    /// A ring of radius `a` in the body x-y plane, the bead at angle `alpha` on it.
-    FreeHoop { a: f64 },
-    /// A vertical ring turned by `phi` about the vertical (or driven at `omega`).
-    VerticalHoop { a: f64, omega: Option<f64> },
-    /// A box with half-extents along the body axes.
-    Box { half: [f64; 3] },
-    /// A symmetric top: its axis along body z from the pivot and a disk at its end.
-    Top,
-    /// A prism (the T-handle): its front and back outlines and the point the trail follows,
-    /// in the body frame about the centre of mass.
-    Prism {
-        front: Vec<[f64; 3]>,
-        back: Vec<[f64; 3]>,
-        tip: [f64; 3],
-    },
-}
-
-/// Draws a scene's rows.
-struct Painter {
-    look: Look,
-    radius: f64,
-}
-
-impl Painter {
-    fn of(scene: &dyn Scene, params: &Params) -> Result<Self> {
-        let name = scene.info().name;
-        let get = |p: &str| params.get(p);
-        Ok(match name {
-            "free-hoop" => {
-                let a = get("a")?;
-                Painter {
-                    look: Look::FreeHoop { a },
-                    radius: 1.2 * a,
-                }
-            }
-            "spinning-hoop" | "driven-hoop" => {
-                let a = get("a")?;
-                Painter {
-                    look: Look::VerticalHoop {
-                        a,
-                        omega: (name == "driven-hoop").then(|| get("omega")).transpose()?,
-                    },
-                    radius: 1.2 * a,
-                }
-            }
-            "free-body" => {
-                let half =
-                    crate::view::geometry::equivalent_box([get("I1")?, get("I2")?, get("I3")?]);
-                Painter {
-                    look: Look::Box { half },
-                    radius: 1.6,
-                }
-            }
-            "heavy-top" => Painter {
-                look: Look::Top,
-                radius: 1.5,
-            },
-            "dzhanibekov" => t_handle()?,
-            other => bail!(
-                "animate draws free-hoop, spinning-hoop, driven-hoop, free-body, dzhanibekov and \
-                 heavy-top; `{other}` has no 3D view"
-            ),
-        })
-    }
-
-    /// The frame of one row; its first dot is the point the trail follows.
-    fn shot(&self, row: &[f64], col: &dyn Fn(&str) -> Option<usize>) -> Shot {
-        let value = |name: &str| col(name).map_or(0.0, |k| row[k]);
-        let blue = RGBColor(0x00, 0x72, 0xB2);
-        let red = RGBColor(0xD5, 0x5E, 0x00);
-        let rotate = |v: [f64; 3]| -> [f64; 3] {
-            let (w, x, y, z) = (value("qw"), value("qx"), value("qy"), value("qz"));
-            let q =
-                nalgebra::UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(w, x, y, z));
-            let r = q * nalgebra::Vector3::new(v[0], v[1], v[2]);
-            [r.x, r.y, r.z]
-        };
-        let mut shot = Shot::default();
-        match self.look {
-            Look::FreeHoop { a } => {
-                let alpha = value("alpha");
-                let (u, v, n) = (
-                    rotate([1.0, 0.0, 0.0]),
-                    rotate([0.0, 1.0, 0.0]),
-                    rotate([0.0, 0.0, 1.0]),
-                );
-                let bead = rotate([a * alpha.cos(), a * alpha.sin(), 0.0]);
-                shot.dots.push((bead, 6, red));
-                shot.lines.push(Line {
-                    points: circle([0.0; 3], u, v, a, 96),
-                    colour: blue,
-                    width: 3,
-                });
-                shot.lines.push(Line {
-                    points: vec![[0.0; 3], n.map(|c| c * 0.5 * a)],
-                    colour: RGBColor(0x00, 0x9E, 0x73),
-                    width: 2,
-                });
-            }
-            Look::VerticalHoop { a, omega } => {
-                let phi = omega.map_or_else(|| value("phi"), |w| w * row[0]);
-                let alpha = value("alpha");
-                let (s, c) = phi.sin_cos();
-                let u = [c, s, 0.0];
-                let bead = [a * alpha.sin() * c, a * alpha.sin() * s, -a * alpha.cos()];
-                shot.dots.push((bead, 6, red));
-                shot.lines.push(Line {
-                    points: circle([0.0; 3], u, [0.0, 0.0, 1.0], a, 96),
-                    colour: blue,
-                    width: 3,
-                });
-            }
-            Look::Box { half } => {
-                let corner =
-                    |sx: f64, sy: f64, sz: f64| rotate([sx * half[0], sy * half[1], sz * half[2]]);
-                // The twelve edges as four closed loops and four struts.
-                for sz in [-1.0, 1.0] {
-                    shot.lines.push(Line {
-                        points: vec![
-                            corner(-1.0, -1.0, sz),
-                            corner(1.0, -1.0, sz),
-                            corner(1.0, 1.0, sz),
-                            corner(-1.0, 1.0, sz),
-                            corner(-1.0, -1.0, sz),
-                        ],
-                        colour: blue,
-                        width: 2,
-                    });
-                }
-                for (sx, sy) in [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)] {
-                    shot.lines.push(Line {
-                        points: vec![corner(sx, sy, -1.0), corner(sx, sy, 1.0)],
-                        colour: blue,
-                        width: 2,
-                    });
-                }
-                // The trail follows the end of the intermediate axis (the Dzhanibekov flip).
-                shot.dots
-                    .insert(0, (rotate([0.0, 1.2 * half[1].max(0.3), 0.0]), 5, red));
-            }
-            Look::Prism {
-                ref front,
-                ref back,
-                tip,
-            } => {
-                shot.dots.push((rotate(tip), 5, red));
-                for outline in [front, back] {
-                    shot.lines.push(Line {
-                        points: outline.iter().map(|&p| rotate(p)).collect(),
-                        colour: blue,
-                        width: 2,
-                    });
-                }
-                for (&a, &b) in front.iter().zip(back).take(front.len() - 1) {
-                    shot.lines.push(Line {
-                        points: vec![rotate(a), rotate(b)],
-                        colour: blue,
-                        width: 2,
-                    });
-                }
-            }
-            Look::Top => {
-                let tip = rotate([0.0, 0.0, 1.0]);
-                shot.dots.push((tip, 4, red));
-                shot.lines.push(Line {
-                    points: vec![[0.0; 3], tip],
-                    colour: RGBColor(0x00, 0x9E, 0x73),
-                    width: 3,
-                });
-                shot.lines.push(Line {
-                    points: circle(
-                        tip,
-                        rotate([1.0, 0.0, 0.0]),
-                        rotate([0.0, 1.0, 0.0]),
-                        0.4,
-                        64,
-                    ),
-                    colour: blue,
-                    width: 3,
-                });
-            }
-        }
-        shot
     }
 }

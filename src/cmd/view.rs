@@ -9,8 +9,8 @@ use std::path::PathBuf;
 
 use anyhow::{Result, bail};
 use clap::ArgMatches;
-use tumble_scenarios::drawing;
 use tumble_scenarios::scene::Rows;
+use tumble_scenarios::{Params, drawing};
 use tumble_studies::simulation::{self, Naming, RunRequest, is_scene_file};
 
 use super::inertia::BodyArgs;
@@ -109,14 +109,7 @@ fn run_view(args: &Args) -> Result<()> {
     };
     let loaded = load_scene(&target)?;
     let info = loaded.scene.info();
-    let drawing = if is_scene_file(scene_arg) {
-        match drawing::of_scene_file(std::path::Path::new(scene_arg))? {
-            Some(body) => Drawing::of_body(&body, &loaded.params),
-            None => Drawing::of_builtin(info.name, &loaded.params)?,
-        }
-    } else {
-        Drawing::of_builtin(info.name, &loaded.params)?
-    };
+    let drawing = drawing_of(Some(scene_arg), info.name, &loaded.params)?;
     let request = RunRequest {
         integrator: args.integrator.clone(),
         t_end: args.t_end,
@@ -228,4 +221,18 @@ fn explorer(args: &Args, matches: Option<&ArgMatches>) -> Result<()> {
         html.len() as f64 / 1e3
     );
     Ok(())
+}
+
+/// The drawing of a run: a scene file's `[body]` when `scene_arg` names a scene file with one,
+/// else the built-in scene `name`'s.
+///
+/// # Errors
+/// A scene file that cannot be read, a scene with no 3D view.
+pub fn drawing_of(scene_arg: Option<&str>, name: &str, params: &Params) -> Result<Drawing> {
+    if let Some(path) = scene_arg.filter(|a| is_scene_file(a))
+        && let Some(body) = drawing::of_scene_file(std::path::Path::new(path))?
+    {
+        return Ok(Drawing::of_body(&body, params));
+    }
+    Drawing::of_builtin(name, params)
 }

@@ -8,6 +8,7 @@
 
 pub mod explorer;
 pub mod geometry;
+pub mod render;
 pub mod run;
 
 use std::fmt::Write as _;

@@ -10,7 +10,7 @@ use tumble_kinematics::EulerConvention;
 use tumble_scenarios::Params;
 use tumble_scenarios::drawing::{BodyDrawing, Part};
 
-use super::geometry::{self, primitive};
+use super::geometry::{self, Form, Piece};
 use super::{f32_base64, round_sig};
 
 /// How an object's pose follows the rows.
@@ -32,7 +32,7 @@ enum Pose {
 struct Object {
     name: &'static str,
     colour: &'static str,
-    parts: Vec<Value>,
+    parts: Vec<Piece>,
     pose: Pose,
     /// Draw the object's own axes (the body frame).
     axes: bool,
@@ -56,12 +56,7 @@ fn pivot(reach: f64) -> Object {
     Object {
         name: "pivot",
         colour: "#555555",
-        parts: vec![primitive(
-            "sphere",
-            &[0.025 * reach],
-            &Vector3::zeros(),
-            &identity(),
-        )],
+        parts: vec![Piece::centred(Form::Sphere(0.025 * reach))],
         pose: Pose::Fixed,
         axes: false,
     }
@@ -71,18 +66,13 @@ fn bead(a: f64, pose: Pose) -> Object {
     Object {
         name: "bead",
         colour: "#d55e00",
-        parts: vec![primitive(
-            "sphere",
-            &[0.06 * a],
-            &Vector3::zeros(),
-            &identity(),
-        )],
+        parts: vec![Piece::centred(Form::Sphere(0.06 * a))],
         pose,
         axes: false,
     }
 }
 
-fn body(parts: Vec<Value>) -> Object {
+fn body(parts: Vec<Piece>) -> Object {
     Object {
         name: "body",
         colour: "#0072b2",
@@ -100,12 +90,10 @@ impl Drawing {
                 Object {
                     name: "hoop",
                     colour: "#0072b2",
-                    parts: vec![primitive(
-                        "torus",
-                        &[a, 0.025 * a],
-                        &Vector3::zeros(),
-                        &identity(),
-                    )],
+                    parts: vec![Piece::centred(Form::Torus {
+                        major: a,
+                        minor: 0.025 * a,
+                    })],
                     pose: hoop,
                     axes: true,
                 },
@@ -161,15 +149,7 @@ impl Drawing {
                 let sides = half.map(|v| 2.0 * v);
                 let reach = 0.5 * Vector3::from(sides).norm();
                 Drawing {
-                    objects: vec![
-                        body(vec![primitive(
-                            "box",
-                            &sides,
-                            &Vector3::zeros(),
-                            &identity(),
-                        )]),
-                        pivot(reach),
-                    ],
+                    objects: vec![body(vec![Piece::centred(Form::Box(sides))]), pivot(reach)],
                     tip: Some(Vector3::new(0.0, 0.6 * sides[1].max(0.6), 0.0)),
                     reach,
                 }
@@ -201,8 +181,22 @@ impl Drawing {
                 Drawing {
                     objects: vec![
                         body(vec![
-                            primitive("cylinder", &[0.02, 1.0], &z(0.5), &upright),
-                            primitive("cylinder", &[0.4, 0.06], &z(1.0), &upright),
+                            Piece::new(
+                                Form::Cylinder {
+                                    radius: 0.02,
+                                    height: 1.0,
+                                },
+                                z(0.5),
+                                upright,
+                            ),
+                            Piece::new(
+                                Form::Cylinder {
+                                    radius: 0.4,
+                                    height: 0.06,
+                                },
+                                z(1.0),
+                                upright,
+                            ),
                         ]),
                         pivot(1.0),
                     ],
@@ -217,11 +211,25 @@ impl Drawing {
         })
     }
 
-    /// The page data of `rows` (the scene's `columns`, `t` first).
+    /// The scene's size (metres): the camera and the arrows are scaled by it.
+    #[must_use]
+    pub fn reach(&self) -> f64 {
+        self.reach
+    }
+
+    /// The objects drawn: colour (`#rrggbb`), pieces in the object's frame, and whether its
+    /// own axes (the body frame) are drawn.
+    pub fn objects(&self) -> impl Iterator<Item = (&'static str, &[Piece], bool)> {
+        self.objects
+            .iter()
+            .map(|o| (o.colour, o.parts.as_slice(), o.axes))
+    }
+
+    /// The poses of every object at every row, the trail and the vectors.
     ///
     /// # Errors
     /// Rows without the columns the drawing needs.
-    pub fn data(&self, columns: &[String], rows: &[Vec<f64>]) -> Result<Value> {
+    pub fn frames(&self, columns: &[String], rows: &[Vec<f64>]) -> Result<Frames> {
         let col = |name: &str| columns.iter().position(|c| c == name);
         let need = |name: &str| {
             col(name).ok_or_else(|| anyhow::anyhow!("the rows have no `{name}` column"))
@@ -239,12 +247,9 @@ impl Drawing {
                 None => row[need("phi")?],
             })
         };
-        // Poses of every object, frame by frame.
-        let mut arrays: Vec<(String, usize, Vec<f32>)> = Vec::new();
-        let mut object_json = Vec::new();
         let mut positions: Vec<Vec<Vector3<f64>>> = Vec::new();
         let mut turns: Vec<Vec<UnitQuaternion<f64>>> = Vec::new();
-        for (k, object) in self.objects.iter().enumerate() {
+        for object in &self.objects {
             let mut p = Vec::with_capacity(n);
             let mut q = Vec::with_capacity(n);
             for row in rows {
@@ -281,30 +286,6 @@ impl Drawing {
                 p.push(at);
                 q.push(turn);
             }
-            object_json.push(json!({
-                "name": object.name,
-                "colour": object.colour,
-                "parts": object.parts,
-                "axes": object.axes,
-                "position": format!("{k}.p"),
-                "quaternion": format!("{k}.q"),
-            }));
-            arrays.push((
-                format!("{k}.p"),
-                3,
-                p.iter()
-                    .flat_map(|v| [v.x, v.y, v.z])
-                    .map(|x| x as f32)
-                    .collect(),
-            ));
-            arrays.push((
-                format!("{k}.q"),
-                4,
-                q.iter()
-                    .flat_map(|u| [u.i, u.j, u.k, u.w])
-                    .map(|x| x as f32)
-                    .collect(),
-            ));
             positions.push(p);
             turns.push(q);
         }
@@ -313,17 +294,7 @@ impl Drawing {
             Some(tip) => turns[0].iter().map(|q| q * tip).collect(),
             None => positions[1].clone(),
         };
-        arrays.push((
-            "trail".into(),
-            3,
-            trail
-                .iter()
-                .flat_map(|v| [v.x, v.y, v.z])
-                .map(|x| x as f32)
-                .collect(),
-        ));
         // Angular velocity (lab) and angular momentum (lab), when the rows give them.
-        let mut vectors = Vec::new();
         let omega: Option<Vec<Vector3<f64>>> = if let (Some(x), Some(y), Some(z)) =
             (col("omega_x"), col("omega_y"), col("omega_z"))
         {
@@ -353,11 +324,13 @@ impl Drawing {
             } else {
                 None
             };
-        for (name, label, colour, series) in [
+        let vectors = [
             ("omega", "ω (angular velocity)", "#cc79a7", omega),
             ("L", "L (angular momentum)", "#009e73", momentum),
-        ] {
-            let Some(series) = series else { continue };
+        ]
+        .into_iter()
+        .filter_map(|(name, label, colour, series)| {
+            let series = series?;
             let largest = series.iter().map(Vector3::norm).fold(0.0, f64::max);
             // The longest arrow of the run reaches 1.3 times the body.
             let scale = if largest > 0.0 {
@@ -365,19 +338,65 @@ impl Drawing {
             } else {
                 0.0
             };
-            vectors.push(json!({
-                "name": name, "label": label, "colour": colour,
-                "scale": round_sig(scale, 6), "array": name,
+            Some(Vector {
+                name,
+                label,
+                colour,
+                scale,
+                series,
+            })
+        })
+        .collect();
+        Ok(Frames {
+            positions,
+            turns,
+            trail,
+            vectors,
+        })
+    }
+
+    /// The page data of `rows` (the scene's `columns`, `t` first).
+    ///
+    /// # Errors
+    /// Rows without the columns the drawing needs.
+    pub fn data(&self, columns: &[String], rows: &[Vec<f64>]) -> Result<Value> {
+        let frames = self.frames(columns, rows)?;
+        let mut arrays: Vec<(String, usize, Vec<f32>)> = Vec::new();
+        let vectors3 = |v: &[Vector3<f64>]| -> Vec<f32> {
+            v.iter()
+                .flat_map(|v| [v.x, v.y, v.z])
+                .map(|x| x as f32)
+                .collect()
+        };
+        let mut object_json = Vec::new();
+        for (k, object) in self.objects.iter().enumerate() {
+            object_json.push(json!({
+                "name": object.name,
+                "colour": object.colour,
+                "parts": object.parts.iter().map(Piece::json).collect::<Vec<_>>(),
+                "axes": object.axes,
+                "position": format!("{k}.p"),
+                "quaternion": format!("{k}.q"),
             }));
+            arrays.push((format!("{k}.p"), 3, vectors3(&frames.positions[k])));
             arrays.push((
-                name.to_string(),
-                3,
-                series
+                format!("{k}.q"),
+                4,
+                frames.turns[k]
                     .iter()
-                    .flat_map(|v| [v.x, v.y, v.z])
+                    .flat_map(|u| [u.i, u.j, u.k, u.w])
                     .map(|x| x as f32)
                     .collect(),
             ));
+        }
+        arrays.push(("trail".into(), 3, vectors3(&frames.trail)));
+        let mut vectors = Vec::new();
+        for v in &frames.vectors {
+            vectors.push(json!({
+                "name": v.name, "label": v.label, "colour": v.colour,
+                "scale": round_sig(v.scale, 6), "array": v.name,
+            }));
+            arrays.push((v.name.to_string(), 3, vectors3(&v.series)));
         }
         // Every column of the rows.
         for (k, name) in columns.iter().enumerate() {
@@ -397,7 +416,7 @@ impl Drawing {
             bail!("a value of the run does not fit a 32-bit float (the page stores them so)");
         }
         Ok(json!({
-            "frames": n,
+            "frames": rows.len(),
             "columns": columns,
             "objects": object_json,
             "vectors": vectors,
@@ -406,4 +425,32 @@ impl Drawing {
             "data": f32_base64(&flat),
         }))
     }
+}
+
+/// A vector drawn as an arrow from the origin: its series in the lab and its scale (metres per
+/// unit: the longest arrow of the run reaches 1.3 times the scene).
+pub struct Vector {
+    /// Key (`omega`, `L`).
+    pub name: &'static str,
+    /// Legend text.
+    pub label: &'static str,
+    /// Colour, `#rrggbb`.
+    pub colour: &'static str,
+    /// Metres per unit of the vector.
+    pub scale: f64,
+    /// The vector at every row.
+    pub series: Vec<Vector3<f64>>,
+}
+
+/// The poses of a drawing's objects at every row (in the order of [`Drawing::objects`]), the
+/// trail point at every row, and the vectors.
+pub struct Frames {
+    /// Position of each object at each row.
+    pub positions: Vec<Vec<Vector3<f64>>>,
+    /// Orientation of each object at each row.
+    pub turns: Vec<Vec<UnitQuaternion<f64>>>,
+    /// The point the trail follows, at each row.
+    pub trail: Vec<Vector3<f64>>,
+    /// ω and L, where the rows give them.
+    pub vectors: Vec<Vector>,
 }
