@@ -223,16 +223,22 @@ fn explorer(args: &Args, matches: Option<&ArgMatches>) -> Result<()> {
     Ok(())
 }
 
-/// The drawing of a run: a scene file's `[body]` when `scene_arg` names a scene file with one,
-/// else the built-in scene `name`'s.
+/// The drawing of a run: a model file's bodies and point masses, a scene file's `[body]`
+/// when `scene_arg` names a scene file with one, else the built-in scene `name`'s.
 ///
 /// # Errors
 /// A scene file that cannot be read, a scene with no 3D view.
 pub fn drawing_of(scene_arg: Option<&str>, name: &str, params: &Params) -> Result<Drawing> {
-    if let Some(path) = scene_arg.filter(|a| is_scene_file(a))
-        && let Some(body) = drawing::of_scene_file(std::path::Path::new(path))?
+    if let Some(path) = scene_arg
+        .filter(|a| is_scene_file(a))
+        .map(std::path::Path::new)
     {
-        return Ok(Drawing::of_body(&body, params));
+        if tumble_model::is_model_file(path) {
+            return Ok(Drawing::of_model(tumble_model::load(path)?, params));
+        }
+        if let Some(body) = drawing::of_scene_file(path)? {
+            return Ok(Drawing::of_body(&body, params));
+        }
     }
     Drawing::of_builtin(name, params)
 }

@@ -118,6 +118,24 @@ impl Piece {
         Self::new(form, Vector3::zeros(), UnitQuaternion::identity())
     }
 
+    /// How far the piece reaches from its object's origin.
+    #[must_use]
+    pub fn reach(&self) -> f64 {
+        let size = match &self.form {
+            Form::Box(sides) => 0.5 * Vector3::from(*sides).norm(),
+            Form::Cylinder { radius, height } => radius.hypot(0.5 * height),
+            Form::Sphere(radius) => *radius,
+            Form::Torus { major, minor } => major + minor,
+            Form::Mesh { vertices, .. } => {
+                return vertices
+                    .iter()
+                    .map(|v| (self.at + self.turn * Vector3::from(*v)).norm())
+                    .fold(0.0, f64::max);
+            }
+        };
+        self.at.norm() + size
+    }
+
     /// The piece for three.js (see `assets/viewer/common.js`, `part`).
     #[must_use]
     pub fn json(&self) -> Value {

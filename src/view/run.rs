@@ -3,10 +3,11 @@
 //! trail follows, and every column of the scene's rows, as `f32` arrays.
 
 use anyhow::{Result, bail};
-use nalgebra::{Quaternion, UnitQuaternion, Vector3};
+use nalgebra::{Matrix3, Point3, Quaternion, UnitQuaternion, Vector3};
 use serde_json::{Value, json};
 use tumble_inertia::{MassSpec, THandle};
 use tumble_kinematics::EulerConvention;
+use tumble_model::ModelScene;
 use tumble_scenarios::Params;
 use tumble_scenarios::drawing::{BodyDrawing, Part};
 
@@ -26,6 +27,10 @@ enum Pose {
     BeadFree { a: f64 },
     /// The bead on a vertical hoop at azimuth φ, `alpha` from the bottom.
     BeadVertical { a: f64, omega: Option<f64> },
+    /// A model's body (by index), placed by the model's expressions.
+    ModelBody(usize),
+    /// A model's point mass (by index), placed by the model's expressions.
+    ModelPoint(usize),
 }
 
 /// One drawn object.
@@ -38,14 +43,22 @@ struct Object {
     axes: bool,
 }
 
-/// A scene's drawing: its objects, the body point the trail follows (in the body frame of the
-/// first object, or the bead), and its size.
+/// What the trail follows.
+#[derive(Debug, Clone, Copy)]
+enum Trail {
+    /// A point of an object (by index), in its own frame.
+    Tip(usize, Vector3<f64>),
+    /// An object's position (by index): the bead, a model's first point mass.
+    Object(usize),
+}
+
+/// A scene's drawing: its objects, what the trail follows, its size, and for a model the
+/// scene and parameters that place its objects.
 pub struct Drawing {
     objects: Vec<Object>,
-    /// The trail follows this point of the first object; `None`: it follows the second (the
-    /// bead).
-    tip: Option<Vector3<f64>>,
+    trail: Trail,
     reach: f64,
+    model: Option<(&'static ModelScene, Params)>,
 }
 
 fn identity() -> UnitQuaternion<f64> {
@@ -100,7 +113,8 @@ impl Drawing {
                 bead(a, bead_pose),
                 pivot(a),
             ],
-            tip: None,
+            trail: Trail::Object(1),
+            model: None,
             reach: a,
         }
     }
@@ -119,8 +133,92 @@ impl Drawing {
                 body(geometry::parts(&drawing.parts, &drawing.center)),
                 pivot(reach),
             ],
-            tip: Some(tip),
+            trail: Trail::Tip(0, tip),
+            model: None,
             reach,
+        }
+    }
+
+    /// The drawing of a model: its bodies (their `geometry`, or the uniform box with their
+    /// mass and principal moments, at their centre of mass along their principal axes), its
+    /// point masses as spheres sized by the cube root of their mass, and the origin; placed at
+    /// each row by the model's own expressions. The trail follows the first point mass, or
+    /// the heaviest turning body's z axis.
+    #[must_use]
+    pub fn of_model(scene: &'static ModelScene, params: &Params) -> Self {
+        let shapes = scene.shapes(params);
+        let state = scene.initial_state(params);
+        let mut row = vec![0.0];
+        row.extend_from_slice(&state);
+        let start = scene.poses(params, &[row]).pop();
+        // The size: the parts' reach about each body's frame origin, the points' distance.
+        let mut pieces: Vec<Vec<Piece>> = Vec::new();
+        let mut reach: f64 = 0.0;
+        for (k, b) in shapes.bodies.iter().enumerate() {
+            let own = match &b.parts {
+                Some(parts) => geometry::parts(parts, &Point3::origin()),
+                None => vec![equivalent_box(b)],
+            };
+            let far = own.iter().map(Piece::reach).fold(0.0, f64::max);
+            let at = start
+                .as_ref()
+                .map_or(0.0, |p| Vector3::from(p.bodies[k].1).norm());
+            reach = reach.max(at + far);
+            pieces.push(own);
+        }
+        for (k, _) in shapes.points.iter().enumerate() {
+            let at = start
+                .as_ref()
+                .map_or(0.0, |p| Vector3::from(p.points[k]).norm());
+            reach = reach.max(at);
+        }
+        let reach = if reach > 0.0 { reach } else { 1.0 };
+        let palette = ["#0072b2", "#56b4e9", "#999999", "#f0e442"];
+        let heaviest = shapes
+            .bodies
+            .iter()
+            .enumerate()
+            .filter(|(k, _)| scene.model().drawing.bodies[*k].rotation.is_some())
+            .max_by(|a, b| a.1.mass.total_cmp(&b.1.mass))
+            .map(|(k, _)| k);
+        let mut objects: Vec<Object> = pieces
+            .into_iter()
+            .enumerate()
+            .map(|(k, parts)| Object {
+                name: "body",
+                colour: palette[k % palette.len()],
+                parts,
+                pose: Pose::ModelBody(k),
+                axes: Some(k) == heaviest,
+            })
+            .collect();
+        let bodies = objects.len();
+        let heaviest_point = shapes.points.iter().map(|p| p.mass).fold(0.0, f64::max);
+        for (k, p) in shapes.points.iter().enumerate() {
+            let size = if heaviest_point > 0.0 {
+                (p.mass / heaviest_point).max(0.0).cbrt()
+            } else {
+                1.0
+            };
+            objects.push(Object {
+                name: "point",
+                colour: "#d55e00",
+                parts: vec![Piece::centred(Form::Sphere(0.06 * reach * size.max(0.3)))],
+                pose: Pose::ModelPoint(k),
+                axes: false,
+            });
+        }
+        let trail = if shapes.points.is_empty() {
+            Trail::Tip(heaviest.unwrap_or(0), Vector3::new(0.0, 0.0, 1.15 * reach))
+        } else {
+            Trail::Object(bodies)
+        };
+        objects.push(pivot(reach));
+        Drawing {
+            objects,
+            trail,
+            reach,
+            model: Some((scene, params.clone())),
         }
     }
 
@@ -150,7 +248,8 @@ impl Drawing {
                 let reach = 0.5 * Vector3::from(sides).norm();
                 Drawing {
                     objects: vec![body(vec![Piece::centred(Form::Box(sides))]), pivot(reach)],
-                    tip: Some(Vector3::new(0.0, 0.6 * sides[1].max(0.6), 0.0)),
+                    trail: Trail::Tip(0, Vector3::new(0.0, 0.6 * sides[1].max(0.6), 0.0)),
+                    model: None,
                     reach,
                 }
             }
@@ -168,10 +267,12 @@ impl Drawing {
                         body(geometry::parts(&body_drawing.parts, &body_drawing.center)),
                         pivot(reach),
                     ],
-                    tip: Some(
+                    trail: Trail::Tip(
+                        0,
                         props.principal().axes.matrix().column(1).into_owned() * 1.15 * reach,
                     ),
                     reach,
+                    model: None,
                 }
             }
             "heavy-top" => {
@@ -200,7 +301,8 @@ impl Drawing {
                         ]),
                         pivot(1.0),
                     ],
-                    tip: Some(z(1.1)),
+                    trail: Trail::Tip(0, z(1.1)),
+                    model: None,
                     reach: 1.1,
                 }
             }
@@ -247,13 +349,32 @@ impl Drawing {
                 None => row[need("phi")?],
             })
         };
+        let model_poses = match &self.model {
+            Some((scene, params)) => {
+                let poses = scene.poses(params, rows);
+                if poses.len() != n {
+                    bail!("the rows do not hold the model's coordinates and rates");
+                }
+                poses
+            }
+            None => Vec::new(),
+        };
         let mut positions: Vec<Vec<Vector3<f64>>> = Vec::new();
         let mut turns: Vec<Vec<UnitQuaternion<f64>>> = Vec::new();
         for object in &self.objects {
             let mut p = Vec::with_capacity(n);
             let mut q = Vec::with_capacity(n);
-            for row in rows {
+            for (i, row) in rows.iter().enumerate() {
                 let (at, turn) = match object.pose {
+                    Pose::ModelBody(k) => {
+                        let (r, origin) = model_poses[i].bodies[k];
+                        let m = Matrix3::from_fn(|a, b| r[a][b]);
+                        (
+                            Vector3::from(origin),
+                            UnitQuaternion::from_matrix_eps(&m, 1e-12, 100, identity()),
+                        )
+                    }
+                    Pose::ModelPoint(k) => (Vector3::from(model_poses[i].points[k]), identity()),
                     Pose::Fixed => (Vector3::zeros(), identity()),
                     Pose::Quaternion => (Vector3::zeros(), orientation(row)?),
                     Pose::VerticalPlane { omega } => {
@@ -290,9 +411,13 @@ impl Drawing {
             turns.push(q);
         }
         // The trail: a point of the body, or the bead.
-        let trail: Vec<Vector3<f64>> = match self.tip {
-            Some(tip) => turns[0].iter().map(|q| q * tip).collect(),
-            None => positions[1].clone(),
+        let trail: Vec<Vector3<f64>> = match self.trail {
+            Trail::Tip(k, tip) => turns[k]
+                .iter()
+                .zip(&positions[k])
+                .map(|(q, p)| p + q * tip)
+                .collect(),
+            Trail::Object(k) => positions[k].clone(),
         };
         // Angular velocity (lab) and angular momentum (lab), when the rows give them.
         let omega: Option<Vec<Vector3<f64>>> = if let (Some(x), Some(y), Some(z)) =
@@ -453,4 +578,122 @@ pub struct Frames {
     pub trail: Vec<Vector3<f64>>,
     /// ω and L, where the rows give them.
     pub vectors: Vec<Vector>,
+}
+
+/// A body known by its mass and inertia, drawn at its centre of mass along its principal
+/// axes: a flat body symmetric about its largest axis (`I₃ = I₁ + I₂`, `I₁ = I₂`: a ring, the
+/// gimbals) as the hoop with its largest moment (radius `√(I₃/m)`), any other as the uniform
+/// box with its principal moments (full sides `s₁² = 6 (I₂ + I₃ − I₁) / m`, …); a box with no
+/// extent along an axis gets 2 % of its largest side there, a body with no inertia a small
+/// sphere.
+fn equivalent_box(b: &tumble_model::drawing::BodyShape) -> Piece {
+    let inertia = Matrix3::from_fn(|i, j| b.inertia[i][j]);
+    let eigen = nalgebra::SymmetricEigen::new(inertia);
+    let mut l = eigen.eigenvalues;
+    let mut axes = eigen.eigenvectors;
+    // The largest moment last, its axis the piece's z.
+    let top = (0..3).max_by(|&i, &j| l[i].total_cmp(&l[j])).unwrap_or(2);
+    if top != 2 {
+        l.swap_rows(top, 2);
+        axes.swap_columns(top, 2);
+    }
+    if axes.determinant() < 0.0 {
+        axes.column_mut(0).neg_mut();
+    }
+    let com = Vector3::from(b.com);
+    let flat = (l[2] - l[0] - l[1]).abs() <= 1e-9 * l[2];
+    let round = (l[0] - l[1]).abs() <= 1e-9 * l[2];
+    if b.mass > 0.0 && l[2] > 0.0 && flat && round {
+        let major = (l[2] / b.mass).sqrt();
+        let turn = UnitQuaternion::from_matrix_eps(&axes, 1e-12, 100, UnitQuaternion::identity());
+        return Piece::new(
+            Form::Torus {
+                major,
+                minor: 0.03 * major,
+            },
+            com,
+            turn,
+        );
+    }
+    let sides = if b.mass > 0.0 {
+        [0, 1, 2].map(|i| {
+            (6.0 * (l[(i + 1) % 3] + l[(i + 2) % 3] - l[i]) / b.mass)
+                .max(0.0)
+                .sqrt()
+        })
+    } else {
+        [0.0; 3]
+    };
+    let largest = sides.iter().copied().fold(0.0, f64::max);
+    if !(largest > 0.0 && largest.is_finite()) {
+        return Piece::new(Form::Sphere(0.05), com, UnitQuaternion::identity());
+    }
+    let turn = UnitQuaternion::from_matrix_eps(&axes, 1e-12, 100, UnitQuaternion::identity());
+    Piece::new(Form::Box(sides.map(|s| s.max(0.02 * largest))), com, turn)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use tumble_model::drawing::BodyShape;
+
+    fn shape(mass: f64, inertia: [[f64; 3]; 3]) -> BodyShape {
+        BodyShape {
+            name: "b".into(),
+            mass,
+            com: [0.1, 0.2, 0.3],
+            inertia,
+            parts: None,
+        }
+    }
+
+    #[test]
+    fn a_body_known_by_its_moments_is_drawn_as_the_uniform_box_that_has_them() {
+        // A uniform box of sides (a, b, c) and mass m: I₁ = m (b² + c²)/12, … (any textbook).
+        let (m, a, b, c) = (2.0, 0.3, 0.5, 0.9);
+        let diag = [
+            m * (b * b + c * c) / 12.0,
+            m * (a * a + c * c) / 12.0,
+            m * (a * a + b * b) / 12.0,
+        ];
+        let piece = equivalent_box(&shape(
+            m,
+            [
+                [diag[0], 0.0, 0.0],
+                [0.0, diag[1], 0.0],
+                [0.0, 0.0, diag[2]],
+            ],
+        ));
+        let Form::Box(sides) = piece.form else {
+            panic!("{piece:?}")
+        };
+        // The largest moment's axis is the piece's z: the sides in the frame of the moments.
+        let world: Vec<f64> = (0..3)
+            .map(|k| (piece.turn * Vector3::ith(k, sides[k])).abs().max())
+            .collect();
+        let mut got = world.clone();
+        got.sort_by(f64::total_cmp);
+        for (g, e) in got.iter().zip([a, b, c]) {
+            assert!((g - e).abs() < 1e-12, "{world:?}");
+        }
+        assert_eq!(piece.at, Vector3::new(0.1, 0.2, 0.3));
+    }
+
+    #[test]
+    fn a_flat_round_body_is_drawn_as_the_ring_with_its_largest_moment() {
+        // A ring of radius R and mass m: I₃ = m R², I₁ = I₂ = m R²/2, here about x.
+        let (m, r) = (0.4, 0.7);
+        let i = m * r * r;
+        let piece = equivalent_box(&shape(
+            m,
+            [[i, 0.0, 0.0], [0.0, i / 2.0, 0.0], [0.0, 0.0, i / 2.0]],
+        ));
+        let Form::Torus { major, .. } = piece.form else {
+            panic!("{piece:?}")
+        };
+        assert!((major - r).abs() < 1e-12);
+        // Its normal (the piece's z) along the largest moment's axis, x.
+        let normal = piece.turn * Vector3::z();
+        assert!((normal.x.abs() - 1.0).abs() < 1e-12, "{normal:?}");
+    }
 }

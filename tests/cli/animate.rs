@@ -30,7 +30,15 @@ fn an_animation_has_one_frame_per_output_time() {
         ("spinning-hoop", "spin.gif"),
         ("driven-hoop", "driven.gif"),
         ("dzhanibekov", "t-handle.gif"),
+        ("models/gyroscope-gimbals.toml", "gimbals.gif"),
+        ("models/double-pendulum.toml", "pendulum.gif"),
     ] {
+        let scene = if scene.ends_with(".toml") {
+            crate::support::root().join(scene).display().to_string()
+        } else {
+            scene.to_string()
+        };
+        let scene = scene.as_str();
         succeeds(
             tmp.path(),
             &[

@@ -152,6 +152,65 @@ fn a_free_hoop_page_holds_the_run_its_bead_on_the_hoop_and_lz_conserved() {
 }
 
 #[test]
+fn a_model_page_places_its_bodies_and_masses_by_the_models_own_geometry() {
+    // The hoop with two beads (models/hoop-two-beads.toml): the hoop turns about the vertical
+    // by phi, each bead at a (sin α cos φ, sin α sin φ, −cos α) — on the hoop: at distance a
+    // from its centre, in its plane.
+    let tmp = TempDir::new().unwrap();
+    let model = root().join("models/hoop-two-beads.toml");
+    succeeds(
+        tmp.path(),
+        &[
+            "view",
+            model.to_str().unwrap(),
+            "--t-end",
+            "2",
+            "-o",
+            "beads.html",
+        ],
+    );
+    let data = page_data(&tmp.path().join("beads.html"));
+    let objects = data["objects"].as_array().unwrap();
+    let names: Vec<&str> = objects
+        .iter()
+        .map(|o| o["name"].as_str().unwrap())
+        .collect();
+    assert_eq!(names, ["body", "point", "point", "pivot"]);
+    // The hoop, known by its inertia (a ring: I₃ = M a²), is drawn as a torus of radius a.
+    let hoop = &objects[0]["parts"][0];
+    assert_eq!(hoop["kind"], "torus");
+    let a = hoop["dims"][0].as_f64().unwrap();
+    let turn = array(&data, "0.q");
+    for bead in ["1.p", "2.p"] {
+        for (k, p) in array(&data, bead).iter().enumerate() {
+            let q = UnitQuaternion::from_quaternion(Quaternion::new(
+                turn[k][3], turn[k][0], turn[k][1], turn[k][2],
+            ));
+            let torus_turn = {
+                let t = &hoop["quaternion"];
+                UnitQuaternion::from_quaternion(Quaternion::new(
+                    t[3].as_f64().unwrap(),
+                    t[0].as_f64().unwrap(),
+                    t[1].as_f64().unwrap(),
+                    t[2].as_f64().unwrap(),
+                ))
+            };
+            let normal = q * (torus_turn * Vector3::z());
+            let b = Vector3::new(p[0], p[1], p[2]);
+            assert!(
+                (b.norm() - a).abs() < 1e-5 * a,
+                "{bead} frame {k}: |r| = {}",
+                b.norm()
+            );
+            assert!(
+                normal.dot(&b).abs() < 1e-5 * a,
+                "{bead} frame {k}: off the hoop's plane"
+            );
+        }
+    }
+}
+
+#[test]
 fn the_t_handle_page_flips_as_its_rows_do() {
     // For the handle in its own (principal) frame, the crossbar's direction in the lab dotted
     // with L is the body component L_x = I_xx ω_x: the trail (on the crossbar) and the ω_x

@@ -65,7 +65,8 @@ use std::path::Path;
 use serde::Deserialize;
 use toml::Spanned;
 use tumble_kinematics::{EulerConvention, RotationKind};
-use tumble_scenarios::body_table::{RawBody, read_mass_properties};
+use tumble_scenarios::body_table::{RawBody, read_body};
+use tumble_scenarios::drawing::Part;
 use tumble_scenarios::params::Domain;
 use tumble_scenarios::toml_file::{self, Location, TomlFileError};
 use tumble_scenarios::{RunOptions, StepControl};
@@ -169,6 +170,48 @@ pub struct Model {
     pub run: RunDefaults,
     /// Where the model came from (a path, or a name given to text).
     pub origin: String,
+    /// Its bodies and point masses, to draw them.
+    pub drawing: ModelDrawing,
+}
+
+/// A model's bodies and point masses as nodes of its graph: where they are and what they
+/// look like, to draw them (`tumble view`, `tumble animate`).
+#[derive(Debug, Clone, Default)]
+pub struct ModelDrawing {
+    /// Rigid bodies, in the file's order.
+    pub bodies: Vec<DrawnBody>,
+    /// Point masses, in the file's order.
+    pub points: Vec<DrawnPoint>,
+}
+
+/// A rigid body of a model.
+#[derive(Debug, Clone)]
+pub struct DrawnBody {
+    /// Its name in the file.
+    pub name: String,
+    /// Its orientation (body frame → model frame, by rows); `None`: it does not turn.
+    pub rotation: Option<M3>,
+    /// Its frame's origin in the model frame.
+    pub origin: V3,
+    /// Mass (of the parameters).
+    pub mass: Id,
+    /// Centre of mass in its frame (of the parameters).
+    pub com: V3,
+    /// Inertia tensor about the centre of mass, in its frame (of the parameters).
+    pub inertia: M3,
+    /// The parts of a body given by the `[body]` vocabulary (`geometry`), in its frame.
+    pub parts: Option<Vec<Part>>,
+}
+
+/// A point mass of a model.
+#[derive(Debug, Clone)]
+pub struct DrawnPoint {
+    /// Its name in the file.
+    pub name: String,
+    /// Mass (of the parameters).
+    pub mass: Id,
+    /// Position in the model frame.
+    pub position: V3,
 }
 
 #[derive(Deserialize)]
@@ -767,6 +810,7 @@ impl Model {
                 }
             };
         let zero = graph.constant(0.0);
+        let mut drawing = ModelDrawing::default();
         for (name, b) in ordered(raw.bodies) {
             let key = format!("bodies.{}", name.get_ref());
             let b = b.get_ref();
@@ -775,7 +819,7 @@ impl Model {
                 Some(o) => src.vector(&format!("{key}.origin"), o, &mut graph, &scope)?,
                 None => [zero; 3],
             };
-            let (mass, com, inertia) = match &b.geometry {
+            let (mass, com, inertia, parts) = match &b.geometry {
                 Some(geometry) => {
                     for (k, present) in [
                         ("mass", b.mass.is_some()),
@@ -790,8 +834,8 @@ impl Model {
                             ));
                         }
                     }
-                    let props =
-                        read_mass_properties(src.origin, src.text, geometry).map_err(|e| {
+                    let (props, parts) =
+                        read_body(src.origin, src.text, geometry).map_err(|e| {
                             ModelFileError::Invalid {
                                 at: e.at,
                                 key: format!("{key}.geometry: {}", e.key),
@@ -809,7 +853,7 @@ impl Model {
                             inertia[r][s] = graph.constant(i[(r, s)]);
                         }
                     }
-                    (m, com, inertia)
+                    (m, com, inertia, Some(parts))
                 }
                 None => {
                     let Some(mass) = &b.mass else {
@@ -845,9 +889,18 @@ impl Model {
                             found => return Err(src.invalid(&list.span(), &ik, format!("must be 3 principal moments or 6 entries [xx, yy, zz, xy, xz, yz] about the centre of mass, found {found}"))),
                         }
                     }
-                    (mass, com, inertia)
+                    (mass, com, inertia, None)
                 }
             };
+            drawing.bodies.push(DrawnBody {
+                name: name.get_ref().clone(),
+                rotation: frame.map(|(r, _)| r),
+                origin,
+                mass,
+                com,
+                inertia,
+                parts,
+            });
             let (rc, omega) = match frame {
                 Some((r, w)) => {
                     let mut alg = Algebra { g: &mut graph };
@@ -898,6 +951,11 @@ impl Model {
                 None => local,
             };
             let r = alg.add3(origin, r);
+            drawing.points.push(DrawnPoint {
+                name: name.get_ref().clone(),
+                mass,
+                position: r,
+            });
             translational(
                 &mut graph,
                 mass,
@@ -961,6 +1019,7 @@ impl Model {
             outputs,
             run,
             origin: origin.to_string(),
+            drawing,
         })
     }
 }

@@ -5,6 +5,7 @@
 //! bodies, point masses, a potential and gravity; the kinetic energy is assembled by the
 //! article's recipe and the equations of motion follow symbolically.
 
+pub mod drawing;
 pub mod expr;
 pub mod file;
 pub mod mechanics;

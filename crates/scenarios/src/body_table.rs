@@ -394,8 +394,20 @@ pub fn read_mass_properties(
     text: &str,
     table: &Spanned<RawBody>,
 ) -> Result<MassProperties, BodyTableError> {
+    read_body(origin, text, table).map(|(props, _)| props)
+}
+
+/// As [`read_mass_properties`], with the parts that draw the body (in the table's frame).
+///
+/// # Errors
+/// As [`read_mass_properties`].
+pub fn read_body(
+    origin: &str,
+    text: &str,
+    table: &Spanned<RawBody>,
+) -> Result<(MassProperties, Vec<crate::drawing::Part>), BodyTableError> {
     let place = Place { origin, text };
-    read(&place, table, BodySceneKind::Free).map(|body| body.props)
+    read(&place, table, BodySceneKind::Free).map(|body| (body.props, body.parts))
 }
 
 /// An error and its sources, on one line.
