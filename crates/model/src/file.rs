@@ -74,6 +74,7 @@ use tumble_scenarios::{RunOptions, StepControl};
 use crate::expr::parse::{ParseError, Scope, parse};
 use crate::expr::{Graph, Id};
 use crate::mechanics::{Algebra, Chain, Equations, Layout, M3, V3, equations};
+use crate::units;
 
 /// The largest model file read, in bytes.
 pub const MAX_FILE_BYTES: usize = 1 << 20;
@@ -340,6 +341,8 @@ impl Scope for Names {
 struct Src<'a> {
     origin: &'a str,
     text: &'a str,
+    /// Every expression read: its key, place and node (checked for units at the end).
+    read: std::cell::RefCell<Vec<(String, std::ops::Range<usize>, Id)>>,
 }
 
 impl Src<'_> {
@@ -383,11 +386,11 @@ impl Src<'_> {
         scope: &Names,
     ) -> Result<Id, ModelFileError> {
         let span = value.span();
-        match value.get_ref() {
-            toml::Value::Float(x) if x.is_finite() => Ok(graph.constant(*x)),
-            toml::Value::Integer(i) => Ok(graph.constant(*i as f64)),
+        let id = match value.get_ref() {
+            toml::Value::Float(x) if x.is_finite() => graph.constant(*x),
+            toml::Value::Integer(i) => graph.constant(*i as f64),
             toml::Value::String(s) => {
-                parse(s, graph, scope).map_err(|e| self.expression(key, &span, s, &e))
+                parse(s, graph, scope).map_err(|e| self.expression(key, &span, s, &e))?
             }
             other => Err(self.invalid(
                 &span,
@@ -396,8 +399,10 @@ impl Src<'_> {
                     "must be an expression (a string such as \"m*g*l\") or a number, found {}",
                     toml_file::describe(other)
                 ),
-            )),
-        }
+            ))?,
+        };
+        self.read.borrow_mut().push((key.to_string(), span, id));
+        Ok(id)
     }
 
     fn expression(
@@ -514,7 +519,11 @@ impl Model {
     /// name, a frame whose parent is unknown or later, a body without mass properties, too many
     /// coordinates, a model too large.
     pub fn parse(text: &str, origin: &str) -> Result<Self, ModelFileError> {
-        let src = Src { origin, text };
+        let src = Src {
+            origin,
+            text,
+            read: std::cell::RefCell::new(Vec::new()),
+        };
         if text.len() > MAX_FILE_BYTES {
             return Err(src.invalid(
                 &(0..0),
@@ -580,10 +589,14 @@ impl Model {
                     } else {
                         domain(&dom).ok_or_else(|| src.invalid(&value.span(), &format!("{key}.domain"), format!("unknown domain {dom:?}; write \"positive\", \"non-negative\", \"finite\" or \"non-zero\"")))?
                     };
+                    let unit = text_of("unit")?;
+                    units::parse_unit(&unit).map_err(|message| {
+                        src.invalid(&value.span(), &format!("{key}.unit"), message)
+                    })?;
                     ParamDef {
                         name: name.get_ref().clone(),
                         default,
-                        unit: text_of("unit")?,
+                        unit,
                         domain,
                         description: text_of("description")?,
                     }
@@ -988,6 +1001,20 @@ impl Model {
             ));
         }
 
+        // Units, where the parameters declare them.
+        let dims: Vec<_> = params
+            .iter()
+            .map(|p| units::parse_unit(&p.unit).ok().flatten())
+            .collect();
+        {
+            let mut inference =
+                units::Inference::new(&graph, layout, &dims, &initial, &initial_rates);
+            for (key, span, id) in src.read.borrow().iter() {
+                inference
+                    .check(*id, units::expected(key))
+                    .map_err(|message| src.invalid(span, key, message))?;
+            }
+        }
         let kinetic = graph.sum(&kinetic_terms);
         let potential = graph.sum(&potential_terms);
         let lagrangian = graph.sub(kinetic, potential);

@@ -10,6 +10,7 @@ pub mod expr;
 pub mod file;
 pub mod mechanics;
 pub mod scene;
+pub mod units;
 
 pub use file::{Model, ModelFileError};
 pub use scene::{ModelScene, from_text, is_model_file, is_model_text, load};

@@ -7,3 +7,4 @@ mod fuzz;
 mod models;
 mod support;
 mod twins;
+mod units;
