@@ -136,6 +136,7 @@ fn _tumble(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(run::scenes_json, m)?)?;
     m.add_function(wrap_pyfunction!(run::integrators_json, m)?)?;
     m.add_function(wrap_pyfunction!(study::sweep, m)?)?;
+    m.add_function(wrap_pyfunction!(study::toml_text, m)?)?;
     m.add_function(wrap_pyfunction!(body::inertia, m)?)?;
     Ok(())
 }

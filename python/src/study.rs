@@ -47,9 +47,74 @@ fn toml_value(key: &str, v: &Bound<'_, PyAny>) -> PyResult<toml::Value> {
         return Ok(toml::Value::Float(x));
     }
     Err(PyTypeError::new_err(format!(
-        "{key}: a sweep holds numbers, text, booleans, lists and tables (dicts); got {}",
+        "{key}: a sweep or model dict holds numbers, text, booleans, lists and tables (dicts); \
+         got {}",
         type_name(v)
     )))
+}
+
+/// A key as TOML writes it: bare when it can be, else quoted.
+fn toml_key(name: &str) -> String {
+    if !name.is_empty()
+        && name
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-')
+    {
+        name.to_string()
+    } else {
+        toml::Value::String(name.to_string()).to_string()
+    }
+}
+
+/// Writes the dict `d` at the dotted table `path` (its TOML keys `keys`) into `out`, in the
+/// dict's order: values as `key = value` (a dict of plain values inline), then dicts that hold
+/// dicts as `[path.key]` tables. The root's dicts are all tables.
+fn emit_table(
+    path: &str,
+    keys: &[String],
+    d: &Bound<'_, PyDict>,
+    out: &mut String,
+) -> PyResult<()> {
+    let mut tables = Vec::new();
+    for (k, v) in d.iter() {
+        let name: String = k.extract().map_err(|_| {
+            PyTypeError::new_err(format!(
+                "{}: keys are names (str), got {}",
+                if path.is_empty() { "model" } else { path },
+                type_name(&k)
+            ))
+        })?;
+        let dotted = if path.is_empty() {
+            name.clone()
+        } else {
+            format!("{path}.{name}")
+        };
+        if let Ok(sub) = v.cast::<PyDict>()
+            && (path.is_empty() || sub.values().iter().any(|x| x.is_instance_of::<PyDict>()))
+        {
+            tables.push((dotted, name, sub.clone()));
+            continue;
+        }
+        let value = toml_value(&dotted, &v)?;
+        out.push_str(&format!("{} = {value}\n", toml_key(&name)));
+    }
+    for (dotted, name, sub) in tables {
+        let mut inner = keys.to_vec();
+        inner.push(toml_key(&name));
+        out.push_str(&format!("\n[{}]\n", inner.join(".")));
+        emit_table(&dotted, &inner, &sub, out)?;
+    }
+    Ok(())
+}
+
+/// The TOML text of a dict laid out like a TOML file (a model file), its keys in the dict's
+/// order (a model's coordinates are its state in the order written): what `tumble.model_text`
+/// returns.
+#[pyfunction]
+pub(crate) fn toml_text(table: &Bound<'_, PyDict>) -> PyResult<String> {
+    let mut out = String::new();
+    emit_table("", &[], table, &mut out)?;
+    Ok(out)
 }
 
 /// A dict of a sweep as a TOML table.

@@ -3,8 +3,10 @@
 The functions here call the same library code as the ``tumble`` command line, so a run gives
 the same numbers, to the last bit, and a refused input the same reason:
 
-* :func:`simulate` runs a built-in scene or a TOML scene file and returns a
+* :func:`simulate` runs a built-in scene, a TOML scene file or a model (a file, its text, or a
+  dict laid out like one, with SymPy expressions where the file has text) and returns a
   :class:`Simulation` whose columns are NumPy arrays (``.to_pandas()``, ``.to_polars()``);
+  :func:`model_text` writes such a dict as a model file;
 * :func:`sweep` runs a parameter sweep (a sweep file or a dict laid out like one) and returns
   its results as a DataFrame (pandas, or polars, or a dict of arrays);
 * :func:`inertia` computes the mass properties of a closed triangle mesh (a file, or vertex and
@@ -38,6 +40,7 @@ __all__ = [
     "__version__",
     "inertia",
     "integrators",
+    "model_text",
     "scenes",
     "simulate",
     "sweep",
@@ -126,8 +129,70 @@ class Simulation:
         return pl.DataFrame({name: self.columns[name] for name in self.names})
 
 
+def _sympy_text(expr: Any) -> str:
+    """A SymPy expression in the model language: ``^`` for powers, ``abs``, ``exp(1)`` for
+    ``E``, floats to the last bit."""
+    from sympy import S
+    from sympy.printing.str import StrPrinter
+
+    class _Printer(StrPrinter):  # type: ignore[misc]
+        def _print_Pow(self, e: Any, rational: bool = False) -> str:
+            if e.exp == S.Half:
+                return f"sqrt({self._print(e.base)})"
+            if e.exp == -1:
+                return f"(1/({self._print(e.base)}))"
+            return f"(({self._print(e.base)})^({self._print(e.exp)}))"
+
+        def _print_Abs(self, e: Any) -> str:
+            return f"abs({self._print(e.args[0])})"
+
+        def _print_Exp1(self, e: Any) -> str:
+            return "exp(1)"
+
+        def _print_Rational(self, e: Any) -> str:
+            return f"({e.p}/{e.q})"
+
+        def _print_Float(self, e: Any) -> str:
+            return repr(float(e))
+
+    return str(_Printer().doprint(expr))
+
+
+def _is_sympy(value: Any) -> bool:
+    return type(value).__module__.split(".")[0] == "sympy"
+
+
+def _plain(value: Any, key: str) -> Any:
+    """A model dict's values as dicts, lists, numbers and text: SymPy numbers as floats, other
+    SymPy expressions as text in the model language."""
+    if isinstance(value, Mapping):
+        return {k: _plain(v, f"{key}.{k}" if key else str(k)) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_plain(v, f"{key}[{i}]") for i, v in enumerate(value)]
+    if _is_sympy(value):
+        if getattr(value, "is_Number", False):
+            return float(value)
+        if getattr(value, "is_Symbol", False) or hasattr(value, "free_symbols"):
+            return _sympy_text(value)
+        raise TypeError(f"{key}: a SymPy {type(value).__name__} is not an expression")
+    return value
+
+
+def model_text(model: Mapping[str, Any]) -> str:
+    """The text of a model file from a dict laid out like one.
+
+    ``{"model": {"name": ...}, "parameters": {...}, "coordinates": {...}, "points": {...},
+    "lagrangian": {...}, ...}``: the tables of a model file as dicts, its expressions as text
+    or as SymPy expressions (printed in the model language: ``x**2`` as ``x^2``), numbers as
+    numbers. ``simulate`` takes such a dict directly.
+    """
+    if not isinstance(model, Mapping):
+        raise TypeError(f"model: expected a dict laid out like a model file, got {type(model).__name__}")
+    return str(_tumble.toml_text(_plain(model, "")))
+
+
 def simulate(
-    scene: PathLike,
+    scene: Union[PathLike, Mapping[str, Any]],
     params: Optional[Mapping[str, float]] = None,
     integrator: Optional[str] = None,
     dt: Optional[float] = None,
@@ -145,7 +210,8 @@ def simulate(
 
     ``scene`` is a built-in scene (:func:`scenes`), a TOML scene file or model file (a path
     ending in ``.toml`` or naming an existing file; ``tumble models`` lists the shipped models),
-    or the text of a model file itself. ``params`` sets parameters over the scene's (or the
+    the text of a model file itself, or a dict laid out like a model file (see
+    :func:`model_text`; SymPy expressions accepted where the file has text). ``params`` sets parameters over the scene's (or the
     file's) values. ``integrator``, ``dt`` (fixed step) or ``tol`` (adaptive tolerance),
     ``t_end`` (horizon) override the file's ``[run]`` options and the scene's defaults. Rows:
     every step (or every ``every``-th), or at the times ``at`` or every ``output_dt`` seconds
@@ -157,8 +223,9 @@ def simulate(
     step (or 100 times looser): about 2–3 times the run's cost; ``check=False`` skips it. Raises ``ValueError``/``TypeError`` for a refused input,
     :class:`SimulationError` when the run fails, ``KeyboardInterrupt`` on Ctrl-C.
     """
+    text = model_text(scene) if isinstance(scene, Mapping) else os.fspath(scene)
     raw = _tumble.simulate(
-        os.fspath(scene),
+        text,
         params=None if params is None else dict(params),
         integrator=integrator,
         dt=dt,

@@ -40,6 +40,9 @@ def scenes_json() -> str:
 def integrators_json() -> str:
     """``tumble integrators --json``."""
 
+def toml_text(table: Dict[str, Any]) -> str:
+    """A dict laid out like a TOML file (a model file), as TOML text."""
+
 def sweep(
     spec: Union[str, Dict[str, Any]],
     threads: Optional[int] = None,
