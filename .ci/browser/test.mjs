@@ -115,6 +115,10 @@ await runPage('free-hoop', hoop);
 const flip = join(work, 'flip.html');
 run('view', 'scenes/t-handle-flip.toml', '-o', flip);
 await runPage('t-handle-flip', flip);
+// A model file: the gyroscope's gimbal rings and rotor, placed by the model's expressions.
+const gimbals = join(work, 'gimbals.html');
+run('view', 'models/gyroscope-gimbals.toml', '--t-end', '2', '-o', gimbals);
+await runPage('gyroscope-gimbals', gimbals);
 
 // The explorer against `tumble inertia --euler … --json`.
 const explorer = join(work, 'explorer.html');
