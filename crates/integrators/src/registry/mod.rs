@@ -114,6 +114,9 @@ pub enum ProblemKind {
     /// A rigid body coupled to internal coordinates by a Lagrangian on `SO(3) × ℝⁿ`
     /// ([`crate::rigid::CoupledLagrangian`]).
     CoupledRigidBody,
+    /// A first-order system that computes the normalized Taylor coefficients of its solution
+    /// through a point ([`crate::TaylorSystem`]).
+    TaylorSeries,
 }
 
 impl ProblemKind {
@@ -128,6 +131,7 @@ impl ProblemKind {
             ProblemKind::RigidBody => "rigid-body",
             ProblemKind::FreeRigidBody => "free-rigid-body",
             ProblemKind::CoupledRigidBody => "coupled-rigid-body",
+            ProblemKind::TaylorSeries => "taylor-series",
         }
     }
 }
