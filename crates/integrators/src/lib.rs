@@ -112,4 +112,4 @@ pub use stepper::{AdaptiveStepper, DenseOutput, Stepper, Tolerances};
 pub use symplectic::{
     HamiltonianStepper, Splitting, SplittingStepper, StormerVerlet, SymplecticEuler,
 };
-pub use taylor::{TaylorError, TaylorSystem};
+pub use taylor::{Taylor, TaylorError, TaylorOrder, TaylorStepper, TaylorSystem};

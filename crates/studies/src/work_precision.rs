@@ -495,7 +495,7 @@ pub fn ladder(
     let method = base.method;
     let order = match method.order {
         Order::Finite(p) => Some(p),
-        Order::Exact => None,
+        Order::Exact | Order::Variable => None,
     };
     let mut out = Ladder {
         integrator: integrator.to_string(),
