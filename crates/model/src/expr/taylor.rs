@@ -115,9 +115,8 @@ impl TaylorWork {
         let stride = max_order + 1;
         let mut scalar = tape.workspace();
         let m = fixed.len().min(tape.inputs);
-        for k in plan.varying_inputs.min(m)..m {
-            scalar[k] = fixed[k];
-        }
+        let from = plan.varying_inputs.min(m);
+        scalar[from..m].copy_from_slice(&fixed[from..m]);
         tape.run_prelude(&mut scalar);
         let mut series = vec![0.0; tape.slots * stride];
         for (s, v) in scalar.iter().enumerate() {
@@ -204,8 +203,8 @@ impl TaylorWork {
                         x[m] = s[b] * x[l];
                         s[a].powf(s[b])
                     } else {
-                        x[l] = log_k(x, l, s, a, k);
-                        x[m] = if cb {
+                        x[l + k] = log_k(x, l, s, a, k);
+                        x[m + k] = if cb {
                             s[b] * x[l + k]
                         } else {
                             cauchy(s, b, x, l, k)
@@ -219,7 +218,7 @@ impl TaylorWork {
                         x[e] = s[b] * s[b] + s[a] * s[a];
                         s[a].atan2(s[b])
                     } else {
-                        x[e] = cauchy(s, b, s, b, k) + cauchy(s, a, s, a, k);
+                        x[e + k] = cauchy(s, b, s, b, k) + cauchy(s, a, s, a, k);
                         let mut num = 0.0;
                         for j in 0..k {
                             let w = (k - j) as f64;
