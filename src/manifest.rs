@@ -434,7 +434,8 @@ struct FailedRungJson {
 struct LadderJson {
     failures: Vec<FailedRungJson>,
     name: String,
-    order: Option<u32>,
+    /// A number, `null` for the exact flow, `"variable"` for a Taylor method.
+    order: tumble_integrators::Order,
     rungs: usize,
     stopped: String,
 }

@@ -323,13 +323,14 @@ fn work_precision_figure(dir: &Path) -> Result<plot::xy::StackedFigure> {
     let mut curves: Vec<Curve> = Vec::new();
     for (i, row) in reader.deserialize::<RungRow>().enumerate() {
         let row = row.with_context(|| format!("{}: row {}", csv_path.display(), i + 2))?;
-        let order =
-            match row.order.as_str() {
-                "exact" => None,
-                p => Some(p.parse().with_context(|| {
-                    format!("{}: row {}: order `{p}`", csv_path.display(), i + 2)
-                })?),
-            };
+        let order = row.order.as_str();
+        if !(matches!(order, "exact" | "variable") || order.parse::<u32>().is_ok()) {
+            anyhow::bail!(
+                "{}: row {}: order `{order}` (a number, `exact` or `variable`)",
+                csv_path.display(),
+                i + 2
+            );
+        }
         let label = plot::work_precision::curve_label(&row.integrator, order);
         let rung = (row.wall_time_s, row.evaluations, row.error);
         match curves.last_mut() {

@@ -227,7 +227,7 @@ pub fn run(args: &Args) -> Result<()> {
         .filter(|l| !l.rungs.is_empty())
         .map(|l| Curve {
             integrator: l.integrator.clone(),
-            label: plot::work_precision::curve_label(&l.integrator, l.order),
+            label: plot::work_precision::curve_label(&l.integrator, &l.order.to_string()),
             rungs: l
                 .rungs
                 .iter()
@@ -333,7 +333,7 @@ fn csv_text(ladders: &[Ladder]) -> Result<String> {
             };
             w.write_record([
                 l.integrator.clone(),
-                l.order.map_or_else(|| "exact".into(), |p| p.to_string()),
+                l.order.to_string(),
                 dt,
                 tol,
                 r.steps.to_string(),
@@ -383,7 +383,7 @@ fn summary(ladders: &[Ladder], t_end: f64) -> String {
             out,
             "{:<14} {:>5} {:>5} {:>14} {:>10} {:>14} {:>16} {:>14}",
             l.integrator,
-            l.order.map_or_else(|| "exact".into(), |p| p.to_string()),
+            l.order.to_string(),
             l.rungs.len(),
             slope_steps.map_or_else(|| "—".into(), |s| format!("{:.2}", -s)),
             if best.is_finite() {

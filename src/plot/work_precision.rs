@@ -25,13 +25,11 @@ pub struct Study<'a> {
     pub reference: (&'a str, &'a str, f64),
 }
 
-/// A curve's legend entry: the integrator and its order (`rk4 (4)`, `exact (exact)`).
+/// A curve's legend entry: the integrator and its order as the registry displays it (`rk4 (4)`,
+/// `exact (exact)`, `taylor (variable)`).
 #[must_use]
-pub fn curve_label(integrator: &str, order: Option<u32>) -> String {
-    match order {
-        Some(p) => format!("{integrator} ({p})"),
-        None => format!("{integrator} (exact)"),
-    }
+pub fn curve_label(integrator: &str, order: &str) -> String {
+    format!("{integrator} ({order})")
 }
 
 /// The `work-precision` figure of `study`: [`figure`] with its title and subtitle. The

@@ -556,6 +556,14 @@ impl<'a> Driver<'a> {
         let mut t = self.t0;
         let mut before = state.clone();
         let mut h = stepper.initial_step(problem, t, state, self.h_max, &tol);
+        // A method that proposes its own steps lands on t_end without stretching the last one.
+        let mut stretch = match stepper.proposed_step(problem, t, state, &tol)? {
+            Some(proposed) => {
+                h = proposed.min(self.h_max);
+                1.0
+            }
+            None => 1.01,
+        };
         let mut err_prev = 1e-4_f64;
         let mut after_reject = false;
         let mut attempts: u64 = 0;
@@ -588,7 +596,7 @@ impl<'a> Driver<'a> {
                 });
             }
             h = h.min(self.h_max);
-            let last = t + 1.01 * h >= self.t_end;
+            let last = t + stretch * h >= self.t_end;
             if last {
                 h = self.t_end - t;
             }
@@ -618,14 +626,22 @@ impl<'a> Driver<'a> {
                     report.status = Status::Stopped;
                     return Ok(report);
                 }
-                let fac = controller.accepted_factor(err, err_prev, q, after_reject);
+                if let Some(proposed) = stepper.proposed_step(problem, t, state, &tol)? {
+                    h = proposed;
+                    stretch = 1.0;
+                } else {
+                    let fac = controller.accepted_factor(err, err_prev, q, after_reject);
+                    h *= fac;
+                }
                 err_prev = err.max(1e-4);
                 after_reject = false;
-                h *= fac;
             } else {
                 report.rejected += 1;
                 after_reject = true;
-                h *= controller.rejected_factor(err, q);
+                h = match stepper.proposed_step(problem, t, state, &tol)? {
+                    Some(proposed) if proposed < h => proposed,
+                    _ => h * controller.rejected_factor(err, q),
+                };
             }
         }
         Ok(report)

@@ -103,6 +103,19 @@ pub enum Error {
         /// State at `t`.
         state: Vec<f64>,
     },
+    /// A problem could not give the Taylor coefficients of its solution at `t`
+    /// ([`crate::TaylorSystem`]).
+    #[error("Taylor coefficients at t = {t} (h = {h}): {reason}")]
+    Taylor {
+        /// Time of the point.
+        t: f64,
+        /// The step about to be taken (NaN when not yet chosen).
+        h: f64,
+        /// What went wrong.
+        reason: crate::taylor::TaylorError,
+        /// State at `t`.
+        state: Vec<f64>,
+    },
     /// A name that the registry does not know.
     #[error("unknown integrator `{0}`")]
     UnknownMethod(String),

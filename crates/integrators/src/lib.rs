@@ -85,6 +85,7 @@ pub mod state;
 pub mod stepper;
 pub mod symplectic;
 pub mod tables;
+pub mod taylor;
 pub mod verification;
 
 pub use composition::Composition;
@@ -111,3 +112,4 @@ pub use stepper::{AdaptiveStepper, DenseOutput, Stepper, Tolerances};
 pub use symplectic::{
     HamiltonianStepper, Splitting, SplittingStepper, StormerVerlet, SymplecticEuler,
 };
+pub use taylor::{Taylor, TaylorError, TaylorOrder, TaylorStepper, TaylorSystem};

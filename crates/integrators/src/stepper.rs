@@ -70,6 +70,25 @@ pub trait AdaptiveStepper<P: ?Sized>: Stepper<P> {
         h_max: f64,
         tolerances: &Tolerances,
     ) -> f64;
+
+    /// The step the method chooses itself at `(t, state)` for `tolerances`, called by the
+    /// driver after each accepted or rejected attempt: `Some(h)` replaces the step-size
+    /// controller (a Taylor method's step comes from the coefficients at the point,
+    /// [`crate::taylor`]), and the driver then lands on `t_end` without stretching the last
+    /// step. The default is `None`: the controller chooses from the error estimate.
+    ///
+    /// # Errors
+    /// Numerical failures at the point.
+    fn proposed_step(
+        &mut self,
+        problem: &P,
+        t: f64,
+        state: &Self::State,
+        tolerances: &Tolerances,
+    ) -> Result<Option<f64>, Error> {
+        let _ = (problem, t, state, tolerances);
+        Ok(None)
+    }
 }
 
 /// A stepper that can evaluate a continuous extension of its last step.

@@ -10,6 +10,7 @@ pub mod expr;
 pub mod file;
 pub mod mechanics;
 pub mod scene;
+pub mod taylor;
 pub mod units;
 
 pub use file::{Model, ModelFileError};

@@ -268,6 +268,17 @@ pub fn equations(g: &mut Graph, lagrangian: Id, layout: Layout) -> Equations {
 /// ratio of a pivot to the largest diagonal entry of `M` (`≤ 0`: not positive definite, and
 /// `b` is left as it is).
 pub fn cholesky_solve(m: &mut [f64], b: &mut [f64], n: usize) -> f64 {
+    let worst = cholesky_factor(m, n);
+    if worst > 0.0 {
+        cholesky_substitute(m, b, n);
+    }
+    worst
+}
+
+/// Overwrites the lower triangle of the symmetric `M` (row-major `n × n`) with its Cholesky
+/// factor `L` (`M = L Lᵀ`). Returns the smallest ratio of a pivot to the largest diagonal
+/// entry of `M`; `≤ 0` when `M` is not positive definite (the factor is then incomplete).
+pub fn cholesky_factor(m: &mut [f64], n: usize) -> f64 {
     let mut scale = 0.0f64;
     for i in 0..n {
         scale = scale.max(m[i * n + i].abs());
@@ -293,6 +304,11 @@ pub fn cholesky_solve(m: &mut [f64], b: &mut [f64], n: usize) -> f64 {
             m[i * n + j] = s / d;
         }
     }
+    worst
+}
+
+/// Solves `L Lᵀ x = b` in place with the factor of [`cholesky_factor`].
+pub fn cholesky_substitute(m: &[f64], b: &mut [f64], n: usize) {
     for i in 0..n {
         let mut s = b[i];
         for k in 0..i {
@@ -307,5 +323,4 @@ pub fn cholesky_solve(m: &mut [f64], b: &mut [f64], n: usize) -> f64 {
         }
         b[i] = s / m[i * n + i];
     }
-    worst
 }

@@ -1,7 +1,8 @@
 //! A model as a scene: [`ModelScene`] implements [`tumble_scenarios::Scene`], so that every
 //! command, sweep and study that runs a built-in scene runs a model file, with the methods of
 //! the first-order kind ([`ProblemKind::Ode`]: the explicit pairs, `rk4`, Gauss–Legendre and
-//! its compositions).
+//! its compositions) and the Taylor methods ([`ProblemKind::TaylorSeries`]: coefficients by
+//! automatic differentiation on the tape, [`crate::taylor`]).
 //!
 //! The state is `(q, q̇)`; each evaluation of the right-hand side runs the model's instruction
 //! tape (mass matrix and forces, [`crate::expr::tape`]) and solves `M q̈ = f` by Cholesky in
@@ -22,14 +23,16 @@ use std::sync::{Mutex, OnceLock};
 
 use nalgebra::SVector;
 use tumble_integrators::{Ode, ProblemKind};
-use tumble_scenarios::scene::run_vector;
+use tumble_scenarios::scene::{run_taylor_vector, run_vector};
 use tumble_scenarios::{
     ParamSpec, Params, Recorder, RunPlan, RunSummary, Scene, SceneError, SceneInfo,
 };
 
 use crate::expr::tape::Tape;
+use crate::expr::taylor::TaylorPlan;
 use crate::file::{Model, ModelFileError};
 use crate::mechanics::cholesky_solve;
+use crate::taylor::ModelTaylor;
 
 /// The largest condition number of the mass matrix accepted at the initial state.
 pub const MAX_CONDITION: f64 = 1e10;
@@ -47,6 +50,8 @@ pub struct ModelScene {
     init: Tape,
     /// Every momentum (for [`ModelScene::momenta`]).
     momenta: Tape,
+    /// The series recursions of `rhs` ([`crate::taylor`]).
+    taylor: TaylorPlan,
 }
 
 fn leak(s: String) -> &'static str {
@@ -65,6 +70,7 @@ impl ModelScene {
         let mut outputs = eq.mass.clone();
         outputs.extend_from_slice(&eq.force);
         let rhs = Tape::with_fixed(&model.graph, &outputs, &fixed);
+        let taylor = TaylorPlan::new(&rhs, 1 + 2 * n);
         let mut row_out = vec![eq.energy];
         let mut diagnostics = vec![leak("energy".into()), leak("energy_rel_err".into())];
         let mut conserved = Vec::new();
@@ -117,7 +123,7 @@ impl ModelScene {
             parameters: Box::leak(parameters.into_boxed_slice()),
             conserved: Box::leak(conserved.into_boxed_slice()),
             oracle: leak(format!("model file {}", model.origin)),
-            problems: &[ProblemKind::Ode],
+            problems: &[ProblemKind::Ode, ProblemKind::TaylorSeries],
             needs_dense_output: false,
             default_integrator: leak(model.run.integrator.clone()),
             default_step: model.run.dt,
@@ -134,6 +140,7 @@ impl ModelScene {
             row,
             init,
             momenta,
+            taylor,
         }
     }
 
@@ -200,6 +207,18 @@ impl ModelScene {
                 b: vec![0.0; n],
             }),
         }
+    }
+
+    /// The equations at `params` as a system computing its Taylor coefficients (Taylor-mode
+    /// automatic differentiation on the tape, [`crate::taylor`]), its storage allocated here.
+    #[must_use]
+    pub fn taylor(&self, params: &Params) -> ModelTaylor<'_> {
+        ModelTaylor::new(
+            &self.rhs,
+            &self.taylor,
+            self.model.layout.n,
+            self.inputs(params),
+        )
     }
 
     /// Refuses an initial state where the mass matrix is singular or ill-conditioned, naming
@@ -292,7 +311,12 @@ impl ModelScene {
             }
         };
         let y = SVector::<f64, S>::from_column_slice(y0);
-        run_vector(&ode, y, plan, columns, 1 + 2 * n, row, &mut [], recorder)
+        if plan.kind == ProblemKind::TaylorSeries {
+            let taylor = self.taylor(params);
+            run_taylor_vector(&taylor, y, plan, columns, 1 + 2 * n, row, &mut [], recorder)
+        } else {
+            run_vector(&ode, y, plan, columns, 1 + 2 * n, row, &mut [], recorder)
+        }
     }
 }
 

@@ -14,6 +14,7 @@
 //! | kind | model | methods |
 //! |---|---|---|
 //! | [`ProblemKind::Ode`] | `y' = f(t, y)` on ℝⁿ (a flattened model) | explicit Runge–Kutta, Gauss–Legendre |
+//! | [`ProblemKind::TaylorSeries`] | `y' = f(t, y)` on ℝⁿ computing its Taylor coefficients ([`TaylorSystem`]) | the Taylor methods |
 //! | [`ProblemKind::RigidBody`] | [`RigidBody`] on SO(3) × ℝ³ | LGVI and its compositions (orders 4–10), principal-axis splittings, exact-flow splitting |
 //! | [`ProblemKind::FreeRigidBody`] | [`FreeRigidBody`] | discrete Moser–Veselov, the exact flow |
 //! | [`ProblemKind::LieVectorField`] | Euler's equations as a vector field on SO(3) × ℝ³ | RKMK, Crouch–Grossman |
@@ -33,7 +34,7 @@ use tumble_integrators::rigid::{
 };
 use tumble_integrators::{
     AdaptiveStepper, Counted, DenseOutput, Driver, Event, HamiltonianSplit, Observer, Ode, Order,
-    ProblemKind, Report, Restepped, SeparableHamiltonian, State, Stepper, Tolerances,
+    ProblemKind, Report, Restepped, SeparableHamiltonian, State, Stepper, TaylorSystem, Tolerances,
 };
 
 use crate::error::SceneError;
@@ -105,7 +106,6 @@ type OdeResult<const S: usize> = Result<Report<SVector<f64, S>>, SceneError>;
 
 impl<P, O, const S: usize> OdeRun<'_, '_, P, O, S>
 where
-    P: Ode<SVector<f64, S>>,
     O: Observer<SVector<f64, S>>,
 {
     /// Fixed steps on the stepper's own interpolant, where one is needed.
@@ -133,7 +133,6 @@ where
 
 impl<P, O, const S: usize> ReceiveOde<P, SVector<f64, S>> for OdeRun<'_, '_, P, O, S>
 where
-    P: Ode<SVector<f64, S>>,
     O: Observer<SVector<f64, S>>,
 {
     type Output = OdeResult<S>;
@@ -219,6 +218,46 @@ where
         t: report.t,
         steps: report.steps,
         evaluations: counted.evaluations().rhs,
+        terminated: matches!(report.status, tumble_integrators::Status::Terminated(_)),
+    })
+}
+
+/// Integrates a first-order system that computes the Taylor coefficients of its solution
+/// ([`ProblemKind::TaylorSeries`], [`TaylorSystem`]) from `y` over the plan's horizon with a
+/// Taylor method, with `events` (located on the step's Taylor polynomial; a terminal event ends
+/// the run). [`Outcome::evaluations`] counts coefficient expansions (one per step, none
+/// rejected).
+///
+/// # Errors
+/// Integration failures.
+pub fn run_taylor<P, O, const S: usize>(
+    problem: &P,
+    y: &mut SVector<f64, S>,
+    plan: &RunPlan,
+    events: &mut [Event<'_, SVector<f64, S>>],
+    observer: &mut O,
+) -> Result<Outcome, SceneError>
+where
+    P: TaylorSystem,
+    O: Observer<SVector<f64, S>>,
+{
+    if plan.kind != ProblemKind::TaylorSeries {
+        return Err(no_stepper(plan, plan.kind.name()));
+    }
+    let y0 = *y;
+    let run = OdeRun {
+        problem,
+        y,
+        plan,
+        driver: plan.driver()?,
+        events,
+        observer,
+    };
+    let report = build::taylor(plan.method, &y0, run)??;
+    Ok(Outcome {
+        t: report.t,
+        steps: report.steps,
+        evaluations: report.steps + report.rejected,
         terminated: matches!(report.status, tumble_integrators::Status::Terminated(_)),
     })
 }
@@ -419,7 +458,7 @@ fn run_fixed<P: ?Sized, S: State, St: Stepper<P, State = S> + Clone, O: Observer
 fn interpolation_order(plan: &RunPlan) -> u32 {
     match plan.method.order {
         Order::Finite(p) => p,
-        Order::Exact => u32::MAX,
+        Order::Exact | Order::Variable => u32::MAX,
     }
 }
 

@@ -10,7 +10,7 @@
 use nalgebra::SVector;
 use tumble_integrators::registry::{self, MethodInfo};
 use tumble_integrators::{
-    DenseStep, Driver, Event, Flow, Observer, Ode, ProblemKind, SeparableHamiltonian,
+    DenseStep, Driver, Event, Flow, Observer, Ode, ProblemKind, SeparableHamiltonian, TaylorSystem,
 };
 
 use crate::dispatch;
@@ -966,6 +966,30 @@ where
     let mut y = y0;
     let mut observer = RowObserver::new(columns, energy_column, plan, row, recorder);
     let outcome = dispatch::run_ode(problem, &mut y, plan, events, &mut observer)?;
+    observer.summary(&outcome)
+}
+
+/// Runs a system that computes its Taylor coefficients ([`ProblemKind::TaylorSeries`]) with the
+/// plan's Taylor method through [`dispatch::run_taylor`], turning states into rows as
+/// [`run_vector`] does.
+#[allow(clippy::too_many_arguments)]
+pub fn run_taylor_vector<P, F, const S: usize>(
+    problem: &P,
+    y0: SVector<f64, S>,
+    plan: &RunPlan,
+    columns: usize,
+    energy_column: usize,
+    row: F,
+    events: &mut [Event<'_, SVector<f64, S>>],
+    recorder: &mut dyn Recorder,
+) -> Result<RunSummary, SceneError>
+where
+    P: TaylorSystem,
+    F: FnMut(f64, &SVector<f64, S>, &mut [f64]),
+{
+    let mut y = y0;
+    let mut observer = RowObserver::new(columns, energy_column, plan, row, recorder);
+    let outcome = dispatch::run_taylor(problem, &mut y, plan, events, &mut observer)?;
     observer.summary(&outcome)
 }
 

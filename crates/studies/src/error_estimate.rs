@@ -498,6 +498,8 @@ pub fn estimate(
         (Order::Exact, _) => f64::INFINITY,
         (Order::Finite(p), false) => 2f64.powi(p as i32),
         (Order::Finite(p), true) => 100f64.powf(f64::from(p) / f64::from(p + 1)),
+        // The order grows with the tolerance: the ratio of the limit p → ∞.
+        (Order::Variable, _) => 100.0,
     };
     let exact = method.order == Order::Exact;
     let check = if exact {

@@ -234,8 +234,8 @@ pub struct FailedRung {
 pub struct Ladder {
     /// Integrator.
     pub integrator: String,
-    /// Its order (`None`: exact).
-    pub order: Option<u32>,
+    /// Its order (a number, the exact flow, or variable: a Taylor method's).
+    pub order: Order,
     /// Rungs from coarse to fine.
     pub rungs: Vec<Rung>,
     /// Rungs that failed.
@@ -493,10 +493,7 @@ pub fn ladder(
     // The integrator's plan for this scene, validated once; rungs change only its step.
     let base = ladder_plan(info, integrator, config)?;
     let method = base.method;
-    let order = match method.order {
-        Order::Finite(p) => Some(p),
-        Order::Exact => None,
-    };
+    let order = method.order;
     let mut out = Ladder {
         integrator: integrator.to_string(),
         order,
@@ -526,22 +523,27 @@ pub fn ladder(
         }
     };
     let cut = |out: &Ladder| out.failures.last().is_some_and(|f| f.time_limit);
-    let Some(p) = order else {
-        // The exact flow: one rung at the scene's default step.
-        let h = refine_step(info.default_step, t_end);
-        if let Some(r) = run(StepControl::Fixed(h), &mut out) {
-            progress(&r);
-            out.rungs.push(r);
+    let p = match order {
+        Order::Finite(p) => p,
+        // Adaptive: its rungs are tolerances, which need no order.
+        Order::Variable => 0,
+        Order::Exact => {
+            // The exact flow: one rung at the scene's default step.
+            let h = refine_step(info.default_step, t_end);
+            if let Some(r) = run(StepControl::Fixed(h), &mut out) {
+                progress(&r);
+                out.rungs.push(r);
+            }
+            out.stop = if cut(&out) {
+                format!(
+                    "a run was cut at {} s",
+                    config.max_run_seconds * Config::CUT_FACTOR
+                )
+            } else {
+                "exact flow: one rung".into()
+            };
+            return Ok(out);
         }
-        out.stop = if cut(&out) {
-            format!(
-                "a run was cut at {} s",
-                config.max_run_seconds * Config::CUT_FACTOR
-            )
-        } else {
-            "exact flow: one rung".into()
-        };
-        return Ok(out);
     };
     let adaptive = method.properties.adaptive;
     // Rung k: a tolerance 10^{-(2 + k/2)}, or n_k = n₀ r^k steps from a start coarse enough.

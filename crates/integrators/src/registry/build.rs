@@ -1,7 +1,7 @@
 //! The registry builds steppers: from a method's [`Stepping`] to the stepper of its family on
 //! a kind of problem, handed to a receiver that runs it.
 //!
-//! One function per [`ProblemKind`] ([`ode`], [`rigid_body`], [`free_rigid_body`],
+//! One function per [`ProblemKind`] ([`ode`], [`taylor`], [`rigid_body`], [`free_rigid_body`],
 //! [`lie_vector_field`], [`coupled`], [`separable`], [`split`]) matches every [`Stepping`]
 //! without a wildcard: a new family is a compile error here until each kind says whether it
 //! runs it. A new table of an existing family (an explicit pair, a Gauss table, a composition)
@@ -28,6 +28,7 @@ use crate::state::{State, VectorState};
 use crate::stepper::{AdaptiveStepper, DenseOutput, Stepper};
 use crate::symplectic::{Splitting, SplittingStepper, StormerVerlet, SymplecticEuler};
 use crate::tables::GaussTableau;
+use crate::taylor::{Taylor, TaylorOrder, TaylorSystem};
 
 use super::{BaseStepper, ExplicitVisitor, GaussVisitor, MethodInfo, ProblemKind, Stepping};
 
@@ -49,16 +50,19 @@ pub trait Receive<P: ?Sized, S: State> {
     fn receive<St: Stepper<P, State = S> + Clone>(self, stepper: St) -> Self::Output;
 }
 
-/// Receives the stepper a method builds for a first-order ODE `P` on states `Y`, and runs it.
-pub trait ReceiveOde<P: Ode<Y>, Y: VectorState> {
+/// Receives the stepper a method builds for a first-order ODE `P` on states `Y` (an [`Ode`], or
+/// a [`TaylorSystem`] for [`taylor`]), and runs it.
+pub trait ReceiveOde<P: ?Sized, Y: VectorState> {
     /// What running it returns.
     type Output;
-    /// An explicit pair: error estimate, step-size control and its own interpolant.
+    /// An explicit pair (error estimate, step-size control and its own interpolant), or an
+    /// adaptive Taylor method (its own steps, its polynomial).
     fn adaptive<St: AdaptiveStepper<P, State = Y> + DenseOutput<P>>(
         self,
         stepper: St,
     ) -> Self::Output;
-    /// A fixed-step method with its own interpolant (RK4, Gauss–Legendre).
+    /// A fixed-step method with its own interpolant (RK4, Gauss–Legendre, a Taylor method of
+    /// fixed order).
     fn interpolating<St: DenseOutput<P, State = Y>>(self, stepper: St) -> Self::Output;
     /// A fixed-step method without an interpolant (a composition of `gauss2`).
     fn plain<St: Stepper<P, State = Y> + Clone>(self, stepper: St) -> Self::Output;
@@ -113,7 +117,43 @@ pub fn ode<P: Ode<Y>, Y: VectorState, R: ReceiveOde<P, Y>>(
         | Stepping::PrincipalAxisSplitting
         | Stepping::ExactSplitting
         | Stepping::Dmv
-        | Stepping::ExactFlow => NoStepper::of(method, ProblemKind::Ode),
+        | Stepping::ExactFlow
+        | Stepping::Taylor(_) => NoStepper::of(method, ProblemKind::Ode),
+    }
+}
+
+/// Builds `method`'s stepper for a first-order ODE that computes its Taylor coefficients
+/// ([`ProblemKind::TaylorSeries`]), on states shaped like `y0`, and hands it to `receiver`.
+///
+/// # Errors
+/// [`NoStepper`] when the method is not a Taylor method.
+pub fn taylor<P: TaylorSystem + ?Sized, Y: VectorState, R: ReceiveOde<P, Y>>(
+    method: &MethodInfo,
+    y0: &Y,
+    receiver: R,
+) -> Result<R::Output, NoStepper> {
+    match method.stepping {
+        Stepping::Taylor(order) => {
+            let stepper = Taylor { order }.stepper(y0);
+            Ok(match order {
+                TaylorOrder::FromTolerance => receiver.adaptive(stepper),
+                TaylorOrder::Fixed(_) => receiver.interpolating(stepper),
+            })
+        }
+        Stepping::Explicit(_)
+        | Stepping::Gauss(_)
+        | Stepping::SymplecticEuler
+        | Stepping::StormerVerlet
+        | Stepping::Strang
+        | Stepping::Composition { .. }
+        | Stepping::Lgvi
+        | Stepping::LieGauss(_)
+        | Stepping::Rkmk4
+        | Stepping::Cg3
+        | Stepping::PrincipalAxisSplitting
+        | Stepping::ExactSplitting
+        | Stepping::Dmv
+        | Stepping::ExactFlow => NoStepper::of(method, ProblemKind::TaylorSeries),
     }
 }
 
@@ -153,7 +193,8 @@ pub fn rigid_body<B: RigidBody + ?Sized, R: Receive<B, RigidBodyState>>(
         | Stepping::Rkmk4
         | Stepping::Cg3
         | Stepping::Dmv
-        | Stepping::ExactFlow => NoStepper::of(method, ProblemKind::RigidBody),
+        | Stepping::ExactFlow
+        | Stepping::Taylor(_) => NoStepper::of(method, ProblemKind::RigidBody),
     }
 }
 
@@ -179,7 +220,8 @@ pub fn free_rigid_body<R: Receive<FreeRigidBody, RigidBodyState>>(
         | Stepping::Rkmk4
         | Stepping::Cg3
         | Stepping::PrincipalAxisSplitting
-        | Stepping::ExactSplitting => NoStepper::of(method, ProblemKind::FreeRigidBody),
+        | Stepping::ExactSplitting
+        | Stepping::Taylor(_) => NoStepper::of(method, ProblemKind::FreeRigidBody),
     }
 }
 
@@ -209,7 +251,8 @@ where
         | Stepping::PrincipalAxisSplitting
         | Stepping::ExactSplitting
         | Stepping::Dmv
-        | Stepping::ExactFlow => NoStepper::of(method, ProblemKind::LieVectorField),
+        | Stepping::ExactFlow
+        | Stepping::Taylor(_) => NoStepper::of(method, ProblemKind::LieVectorField),
     }
 }
 
@@ -251,7 +294,8 @@ where
         | Stepping::PrincipalAxisSplitting
         | Stepping::ExactSplitting
         | Stepping::Dmv
-        | Stepping::ExactFlow => NoStepper::of(method, ProblemKind::CoupledRigidBody),
+        | Stepping::ExactFlow
+        | Stepping::Taylor(_) => NoStepper::of(method, ProblemKind::CoupledRigidBody),
     }
 }
 
@@ -289,7 +333,8 @@ where
         | Stepping::PrincipalAxisSplitting
         | Stepping::ExactSplitting
         | Stepping::Dmv
-        | Stepping::ExactFlow => NoStepper::of(method, ProblemKind::Separable),
+        | Stepping::ExactFlow
+        | Stepping::Taylor(_) => NoStepper::of(method, ProblemKind::Separable),
     }
 }
 
@@ -318,7 +363,8 @@ where
         | Stepping::PrincipalAxisSplitting
         | Stepping::ExactSplitting
         | Stepping::Dmv
-        | Stepping::ExactFlow => NoStepper::of(method, ProblemKind::Split),
+        | Stepping::ExactFlow
+        | Stepping::Taylor(_) => NoStepper::of(method, ProblemKind::Split),
     }
 }
 

@@ -53,6 +53,7 @@ use crate::explicit::ExplicitRungeKutta;
 use crate::tables::explicit as explicit_tables;
 use crate::tables::gauss as gauss_tables;
 use crate::tables::{CompositionTable, ExplicitTableau, composition, rk_pairs};
+use crate::taylor::TaylorOrder;
 
 /// Family of a method.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -73,6 +74,8 @@ pub enum Family {
     Splitting,
     /// The exact flow of a problem with a closed-form solution.
     ExactFlow,
+    /// Taylor series of the solution, its coefficients from the problem.
+    Taylor,
 }
 
 impl Family {
@@ -87,6 +90,7 @@ impl Family {
             Family::LieGroup => "lie-group",
             Family::Splitting => "splitting",
             Family::ExactFlow => "exact-flow",
+            Family::Taylor => "taylor",
         }
     }
 }
@@ -114,6 +118,9 @@ pub enum ProblemKind {
     /// A rigid body coupled to internal coordinates by a Lagrangian on `SO(3) × ℝⁿ`
     /// ([`crate::rigid::CoupledLagrangian`]).
     CoupledRigidBody,
+    /// A first-order system that computes the normalized Taylor coefficients of its solution
+    /// through a point ([`crate::TaylorSystem`]).
+    TaylorSeries,
 }
 
 impl ProblemKind {
@@ -128,6 +135,7 @@ impl ProblemKind {
             ProblemKind::RigidBody => "rigid-body",
             ProblemKind::FreeRigidBody => "free-rigid-body",
             ProblemKind::CoupledRigidBody => "coupled-rigid-body",
+            ProblemKind::TaylorSeries => "taylor-series",
         }
     }
 }
@@ -139,6 +147,8 @@ pub enum Order {
     Finite(u32),
     /// No truncation error: the method is the exact flow.
     Exact,
+    /// Chosen at each step from the tolerance (a Taylor method: `p = ⌈−½ ln ε + 1⌉`).
+    Variable,
 }
 
 impl Order {
@@ -147,7 +157,7 @@ impl Order {
     pub const fn value(self) -> Option<u32> {
         match self {
             Order::Finite(p) => Some(p),
-            Order::Exact => None,
+            Order::Exact | Order::Variable => None,
         }
     }
 }
@@ -157,6 +167,7 @@ impl std::fmt::Display for Order {
         match self {
             Order::Finite(p) => write!(f, "{p}"),
             Order::Exact => f.write_str("exact"),
+            Order::Variable => f.write_str("variable"),
         }
     }
 }
@@ -166,6 +177,7 @@ impl Serialize for Order {
         match self {
             Order::Finite(p) => serializer.serialize_u32(*p),
             Order::Exact => serializer.serialize_none(),
+            Order::Variable => serializer.serialize_str("variable"),
         }
     }
 }
@@ -177,12 +189,13 @@ impl PartialEq<u32> for Order {
     }
 }
 
-/// Finite orders compare as numbers; [`Order::Exact`] is above every finite order.
+/// Finite orders compare as numbers; [`Order::Exact`] is above every finite order, and so is
+/// [`Order::Variable`] (a Taylor method's order grows as the tolerance tightens).
 impl PartialOrd<u32> for Order {
     fn partial_cmp(&self, other: &u32) -> Option<std::cmp::Ordering> {
         match self {
             Order::Finite(p) => p.partial_cmp(other),
-            Order::Exact => Some(std::cmp::Ordering::Greater),
+            Order::Exact | Order::Variable => Some(std::cmp::Ordering::Greater),
         }
     }
 }
@@ -503,6 +516,21 @@ pub const ROWS: &[MethodInfo] = &[
         "exact",
         Stepping::ExactFlow,
         "exact free-rigid-body flow: Jacobi elliptic functions and Carlson's R_J (Celledoni, Fassò, Säfström & Zanna 2008, corrected)",
+    ),
+    MethodInfo::new(
+        "taylor",
+        Stepping::Taylor(TaylorOrder::FromTolerance),
+        "Taylor series by automatic differentiation, order p = ceil(-ln(eps)/2 + 1) and step from the last two coefficients (Jorba & Zou 2005), the step's polynomial as dense output",
+    ),
+    MethodInfo::new(
+        "taylor8",
+        Stepping::Taylor(TaylorOrder::Fixed(8)),
+        "Taylor series of order 8 by automatic differentiation, fixed steps, the step's polynomial as dense output",
+    ),
+    MethodInfo::new(
+        "taylor16",
+        Stepping::Taylor(TaylorOrder::Fixed(16)),
+        "Taylor series of order 16 by automatic differentiation, fixed steps, the step's polynomial as dense output",
     ),
 ];
 

@@ -11,6 +11,7 @@
 
 use crate::explicit::ExplicitRungeKutta;
 use crate::tables::{CompositionTable, ErrorEstimator, ExplicitTableau, GaussTableau};
+use crate::taylor::TaylorOrder;
 
 use super::{Family, Order, ProblemKind, Properties};
 
@@ -58,6 +59,9 @@ pub enum Stepping {
     Dmv,
     /// The exact free-rigid-body flow ([`crate::rigid::ExactStepper`]).
     ExactFlow,
+    /// A Taylor-series method ([`crate::TaylorStepper`]) on a problem that computes its Taylor
+    /// coefficients: order from the tolerance or fixed.
+    Taylor(crate::taylor::TaylorOrder),
 }
 
 /// A symmetric method of order 2 that the composition tables compose.
@@ -243,6 +247,8 @@ const LIE_EXPLICIT: Properties = Properties {
 pub(super) const RIGID_BODY: &str = "rigid body: inertia J (any symmetric positive definite) and potential V(R) with its moment M(R)";
 pub(super) const ODE: &str = "first-order ODE y' = f(t, y)";
 const SEPARABLE: &str = "separable Hamiltonian H = T(p) + V(q)";
+const TAYLOR: &str =
+    "first-order ODE whose Taylor coefficients the problem computes (automatic differentiation)";
 const FREE_BODY: &str = "free rigid body (inertia J)";
 const LIE_FIELD: &str = "vector field on SO(3) × R^n: R' = R hat(xi(t, R, y)), y' = f(t, R, y)";
 
@@ -265,6 +271,8 @@ impl Stepping {
             | Stepping::PrincipalAxisSplitting
             | Stepping::ExactSplitting
             | Stepping::Dmv => 2,
+            Stepping::Taylor(TaylorOrder::Fixed(p)) => p,
+            Stepping::Taylor(TaylorOrder::FromTolerance) => return Order::Variable,
             Stepping::ExactFlow => return Order::Exact,
         })
     }
@@ -285,7 +293,8 @@ impl Stepping {
             | Stepping::PrincipalAxisSplitting
             | Stepping::ExactSplitting
             | Stepping::Dmv
-            | Stepping::ExactFlow => 1,
+            | Stepping::ExactFlow
+            | Stepping::Taylor(_) => 1,
         }
     }
 
@@ -307,6 +316,7 @@ impl Stepping {
                 Family::Splitting
             }
             Stepping::ExactFlow => Family::ExactFlow,
+            Stepping::Taylor(_) => Family::Taylor,
         }
     }
 
@@ -334,6 +344,8 @@ impl Stepping {
                 exact: true,
                 ..LIE_SYMPLECTIC_EXPLICIT
             },
+            Stepping::Taylor(TaylorOrder::FromTolerance) => ADAPTIVE,
+            Stepping::Taylor(TaylorOrder::Fixed(_)) => EXPLICIT,
         }
     }
 
@@ -351,6 +363,7 @@ impl Stepping {
             | Stepping::ExactSplitting => RIGID_BODY,
             Stepping::Rkmk4 | Stepping::Cg3 => LIE_FIELD,
             Stepping::Dmv | Stepping::ExactFlow => FREE_BODY,
+            Stepping::Taylor(_) => TAYLOR,
         }
     }
 
@@ -368,6 +381,7 @@ impl Stepping {
             }
             Stepping::Rkmk4 | Stepping::Cg3 => &[ProblemKind::LieVectorField],
             Stepping::Dmv | Stepping::ExactFlow => &[ProblemKind::FreeRigidBody],
+            Stepping::Taylor(_) => &[ProblemKind::TaylorSeries],
         }
     }
 }

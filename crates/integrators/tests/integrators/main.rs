@@ -23,3 +23,4 @@ mod rigid_body_orders;
 mod rigid_body_problems;
 mod special_functions;
 mod tables_as_data;
+mod taylor_method;

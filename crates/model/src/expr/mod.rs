@@ -23,6 +23,7 @@
 
 pub mod parse;
 pub mod tape;
+pub mod taylor;
 
 use std::collections::HashMap;
 

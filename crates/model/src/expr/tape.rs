@@ -10,7 +10,7 @@ use super::{Fun, Graph, Id, Node};
 
 /// One operation of a tape.
 #[derive(Debug, Clone, Copy, PartialEq)]
-enum Op {
+pub(super) enum Op {
     Const(f64),
     Add,
     Sub,
@@ -25,21 +25,21 @@ enum Op {
 
 /// An instruction: `slot[dst] = op(slot[a], slot[b])`.
 #[derive(Debug, Clone, Copy, PartialEq)]
-struct Instr {
-    op: Op,
-    dst: u32,
-    a: u32,
-    b: u32,
+pub(super) struct Instr {
+    pub(super) op: Op,
+    pub(super) dst: u32,
+    pub(super) a: u32,
+    pub(super) b: u32,
 }
 
 /// Outputs of a graph as instructions.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Tape {
-    inputs: usize,
-    slots: usize,
-    prelude: Vec<Instr>,
-    body: Vec<Instr>,
-    outputs: Vec<u32>,
+    pub(super) inputs: usize,
+    pub(super) slots: usize,
+    pub(super) prelude: Vec<Instr>,
+    pub(super) body: Vec<Instr>,
+    pub(super) outputs: Vec<u32>,
 }
 
 impl Tape {

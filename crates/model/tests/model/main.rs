@@ -6,5 +6,6 @@ mod expr;
 mod fuzz;
 mod models;
 mod support;
+mod taylor;
 mod twins;
 mod units;
