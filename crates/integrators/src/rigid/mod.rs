@@ -60,6 +60,7 @@ pub mod lie_rk;
 pub mod problem;
 pub mod splitting;
 pub mod state;
+pub mod taylor;
 
 pub use coupled::{
     CoupledLagrangian, CoupledLgvi, CoupledVectorField, KineticBlocks, KineticJet, Scalar,
@@ -81,3 +82,4 @@ pub use splitting::{
     split4, split6, split8,
 };
 pub use state::{CoupledState, GroupState, RigidBodyState};
+pub use taylor::TaylorHeavyTop;

@@ -34,6 +34,7 @@ use nalgebra::{Matrix3, Rotation3, SVector, Vector3};
 use tumble_inertia::{MassSpec, THandle};
 use tumble_integrators::rigid::{
     EulerEquations, ExactFlow, FreeRigidBody, HeavyTop, LieVectorField, RigidBody, RigidBodyState,
+    TaylorHeavyTop,
 };
 use tumble_integrators::{Ode, ProblemKind};
 use tumble_kinematics::so3::{exp, hat};
@@ -622,7 +623,12 @@ pub static HEAVY_TOP: SceneInfo = SceneInfo {
     parameters: &HEAVY_TOP_SPECS,
     conserved: &["energy", "Lz", "L . e3 (symmetric top)"],
     oracle: "energy H = 1269.975 conserved; Lz and the spin L . (R e3) conserved",
-    problems: HEAVY_TOP_PROBLEMS,
+    problems: &[
+        ProblemKind::RigidBody,
+        ProblemKind::LieVectorField,
+        ProblemKind::Ode,
+        ProblemKind::TaylorSeries,
+    ],
     needs_dense_output: false,
     default_integrator: "vern9",
     default_step: 1e-3,
@@ -697,6 +703,30 @@ impl Scene for HeavyTopScene {
     ) -> Result<RunSummary, SceneError> {
         let info = self.info();
         let (top, s0) = Self::top_and_state(params)?;
+        if plan.kind == ProblemKind::TaylorSeries {
+            // The Taylor method on the hand-written coefficients of Euler's equations.
+            let mut previous = None;
+            return crate::scene::run_taylor_vector(
+                &TaylorHeavyTop::new(&top),
+                flatten(&s0),
+                plan,
+                info.columns().len(),
+                ENERGY_COLUMN,
+                |t, y, out| {
+                    write_row(
+                        &top,
+                        None,
+                        &Matrix3::identity(),
+                        t,
+                        &unflatten(y),
+                        &mut previous,
+                        out,
+                    );
+                },
+                &mut [],
+                recorder,
+            );
+        }
         run_rigid(
             info,
             top,
