@@ -6,9 +6,11 @@
 //! - `free-hoop`: the built-in's flattened SO(3) × ℝ model `∈ ℝ¹⁴` against
 //!   `models/free-hoop-euler.toml` (ZYZ angles and the bead, `(q, q̇) ∈ ℝ⁸`).
 //!
-//! Each round times a batch of evaluations of each side at states along a short trajectory;
-//! the table gives the median over rounds of the time per evaluation and the ratio
-//! model / built-in. Run: `cargo bench -p tumble-model --bench model_rhs`.
+//! Each model runs two ways: its tape compiled to native code at load (`tumble-jit`, the
+//! default) and interpreted. Each round times a batch of evaluations of each of the three
+//! sides in turn; the table gives the median over rounds of the time per evaluation, the
+//! ratios to the built-in, and the time to compile the model's tape (median of 5).
+//! Run: `cargo bench -p tumble-model --bench model_rhs`.
 
 use std::hint::black_box;
 use std::path::Path;
@@ -16,7 +18,7 @@ use std::time::Instant;
 
 use nalgebra::SVector;
 use tumble_integrators::Ode;
-use tumble_model::ModelScene;
+use tumble_model::{Evaluation, ModelScene};
 use tumble_scenarios::Scene;
 use tumble_scenarios::scenes::free_hoop::{FlatFreeHoop, FreeHoopScene, flatten as flatten_hoop};
 use tumble_scenarios::scenes::rigid::{FlatRigidBody, HeavyTopScene, flatten as flatten_top};
@@ -43,14 +45,59 @@ fn median(mut v: Vec<f64>) -> f64 {
     v[v.len() / 2]
 }
 
-/// Alternates the two sides `ROUNDS` times; the medians.
-fn side_by_side(mut builtin: impl FnMut(), mut model: impl FnMut()) -> (f64, f64) {
-    let (mut b, mut m) = (Vec::new(), Vec::new());
+/// Alternates the sides `ROUNDS` times; the medians.
+fn side_by_side<const K: usize>(sides: &mut [&mut dyn FnMut(); K]) -> [f64; K] {
+    let mut t: [Vec<f64>; K] = std::array::from_fn(|_| Vec::new());
     for _ in 0..ROUNDS {
-        b.push(batch(&mut builtin));
-        m.push(batch(&mut model));
+        for (k, side) in sides.iter_mut().enumerate() {
+            t[k].push(batch(&mut **side));
+        }
     }
-    (median(b), median(m))
+    t.map(median)
+}
+
+/// Milliseconds to compile the model's right-hand side (median of 5).
+fn compile_ms(scene: &ModelScene) -> f64 {
+    median(
+        (0..5)
+            .map(|_| {
+                let start = Instant::now();
+                black_box(scene.compile_rhs().unwrap_or_else(|e| panic!("{e}")));
+                start.elapsed().as_secs_f64() * 1e3
+            })
+            .collect(),
+    )
+}
+
+fn report(name: &str, [b, native, interpreted]: [f64; 3], scene: &ModelScene) {
+    println!(
+        "{name:<10}  {b:>11.1}  {native:>10.1}  {:>6.2}  {interpreted:>15.1}  {:>6.2}  {:>6}  {:>10.1}",
+        native / b,
+        interpreted / b,
+        scene.rhs_instructions(),
+        compile_ms(scene),
+    );
+}
+
+/// Times a model's right-hand side, native and interpreted, beside the built-in's `builtin`.
+fn model_sides<const S: usize>(name: &str, scene: &ModelScene, builtin: &mut dyn FnMut()) {
+    let mp = scene.info().default_params();
+    let native = scene.ode_with(&mp, Evaluation::Native);
+    let interpreted = scene.ode_with(&mp, Evaluation::Interpreted);
+    assert_eq!(
+        scene.evaluation(),
+        Evaluation::Native,
+        "no code generator here"
+    );
+    let ym = SVector::<f64, S>::from_column_slice(&scene.initial_state(&mp));
+    let (mut dn, mut di) = (ym, ym);
+    let times = side_by_side(&mut [
+        builtin,
+        &mut || native.rhs(black_box(0.0), black_box(&ym), black_box(&mut dn)),
+        &mut || interpreted.rhs(black_box(0.0), black_box(&ym), black_box(&mut di)),
+    ]);
+    assert_eq!(dn, di, "native and interpreted evaluations differ");
+    report(name, times, scene);
 }
 
 fn main() {
@@ -58,8 +105,15 @@ fn main() {
         "time per right-hand-side evaluation (median of {ROUNDS} alternating batches of {BATCH})"
     );
     println!(
-        "{:<10}  {:>12}  {:>12}  {:>8}  {:>12}",
-        "scene", "built-in ns", "model ns", "ratio", "model instr."
+        "{:<10}  {:>11}  {:>10}  {:>6}  {:>15}  {:>6}  {:>6}  {:>10}",
+        "scene",
+        "built-in ns",
+        "native ns",
+        "ratio",
+        "interpreted ns",
+        "ratio",
+        "instr.",
+        "compile ms"
     );
 
     // Heavy top.
@@ -68,23 +122,9 @@ fn main() {
     let flat = FlatRigidBody(top);
     let y = flatten_top(&s0);
     let mut dy = y;
-    let scene = shipped("heavy-top");
-    let mp = scene.info().default_params();
-    let ode = scene.ode(&mp);
-    let y0 = scene.initial_state(&mp);
-    let ym = SVector::<f64, 6>::from_column_slice(&y0);
-    let mut dym = ym;
-    let (b, m) = side_by_side(
-        || flat.rhs(black_box(0.0), black_box(&y), black_box(&mut dy)),
-        || ode.rhs(black_box(0.0), black_box(&ym), black_box(&mut dym)),
-    );
-    black_box((dy, dym));
-    println!(
-        "{:<10}  {b:>12.1}  {m:>12.1}  {:>8.2}  {:>12}",
-        "heavy-top",
-        m / b,
-        scene.rhs_instructions()
-    );
+    model_sides::<6>("heavy-top", shipped("heavy-top"), &mut || {
+        flat.rhs(black_box(0.0), black_box(&y), black_box(&mut dy));
+    });
 
     // Free hoop.
     let params = FreeHoopScene.info().default_params();
@@ -92,21 +132,7 @@ fn main() {
     let flat = FlatFreeHoop::new(model).unwrap();
     let y = flatten_hoop(&s0);
     let mut dy = y;
-    let scene = shipped("free-hoop-euler");
-    let mp = scene.info().default_params();
-    let ode = scene.ode(&mp);
-    let y0 = scene.initial_state(&mp);
-    let ym = SVector::<f64, 8>::from_column_slice(&y0);
-    let mut dym = ym;
-    let (b, m) = side_by_side(
-        || flat.rhs(black_box(0.0), black_box(&y), black_box(&mut dy)),
-        || ode.rhs(black_box(0.0), black_box(&ym), black_box(&mut dym)),
-    );
-    black_box((dy, dym));
-    println!(
-        "{:<10}  {b:>12.1}  {m:>12.1}  {:>8.2}  {:>12}",
-        "free-hoop",
-        m / b,
-        scene.rhs_instructions()
-    );
+    model_sides::<8>("free-hoop", shipped("free-hoop-euler"), &mut || {
+        flat.rhs(black_box(0.0), black_box(&y), black_box(&mut dy));
+    });
 }

@@ -14,4 +14,4 @@ pub mod taylor;
 pub mod units;
 
 pub use file::{Model, ModelFileError};
-pub use scene::{ModelScene, from_text, is_model_file, is_model_text, load};
+pub use scene::{Evaluation, ModelScene, from_text, is_model_file, is_model_text, load};

@@ -33,6 +33,7 @@ use crate::expr::taylor::TaylorPlan;
 use crate::file::{Model, ModelFileError};
 use crate::mechanics::cholesky_solve;
 use crate::taylor::ModelTaylor;
+use tumble_jit::{JitError, Native};
 
 /// The largest condition number of the mass matrix accepted at the initial state.
 pub const MAX_CONDITION: f64 = 1e10;
@@ -44,6 +45,8 @@ pub struct ModelScene {
     model: Model,
     /// Mass matrix (row-major) then forces.
     rhs: Tape,
+    /// `rhs`'s body as native code, where the machine has a code generator.
+    native: Option<Native>,
     /// Energy, momenta of the cyclic coordinates, outputs.
     row: Tape,
     /// Initial coordinates then rates (of the parameters).
@@ -70,6 +73,7 @@ impl ModelScene {
         let mut outputs = eq.mass.clone();
         outputs.extend_from_slice(&eq.force);
         let rhs = Tape::with_fixed(&model.graph, &outputs, &fixed);
+        let native = rhs.compile().ok();
         let taylor = TaylorPlan::new(&rhs, 1 + 2 * n);
         let mut row_out = vec![eq.energy];
         let mut diagnostics = vec![leak("energy".into()), leak("energy_rel_err".into())];
@@ -137,6 +141,7 @@ impl ModelScene {
             info,
             model,
             rhs,
+            native,
             row,
             init,
             momenta,
@@ -189,9 +194,38 @@ impl ModelScene {
             .collect()
     }
 
-    /// The right-hand side at `params`, its workspace allocated here once.
+    /// How [`ModelScene::ode`] evaluates the right-hand side: natively where the machine has
+    /// a code generator (x86-64, AArch64, RISC-V 64, s390x), else by interpretation.
+    #[must_use]
+    pub fn evaluation(&self) -> Evaluation {
+        if self.native.is_some() {
+            Evaluation::Native
+        } else {
+            Evaluation::Interpreted
+        }
+    }
+
+    /// Compiles the right-hand side's tape again (what loading the model did once), for
+    /// timing the compilation.
+    ///
+    /// # Errors
+    /// [`JitError`] where the machine has no code generator.
+    pub fn compile_rhs(&self) -> Result<Native, JitError> {
+        self.rhs.compile()
+    }
+
+    /// The right-hand side at `params`, its workspace allocated here once, evaluated as
+    /// [`ModelScene::evaluation`] says.
     #[must_use]
     pub fn ode(&self, params: &Params) -> ModelOde<'_> {
+        self.ode_with(params, self.evaluation())
+    }
+
+    /// The right-hand side at `params` evaluated by interpretation or native code (native
+    /// falls back to interpretation where the machine has no code generator). Both give the
+    /// same bits.
+    #[must_use]
+    pub fn ode_with(&self, params: &Params, evaluation: Evaluation) -> ModelOde<'_> {
         let n = self.model.layout.n;
         let mut slots = self.rhs.workspace();
         let inputs = self.inputs(params);
@@ -200,6 +234,10 @@ impl ModelScene {
         self.rhs.run_prelude(&mut slots);
         ModelOde {
             tape: &self.rhs,
+            native: match evaluation {
+                Evaluation::Native => self.native,
+                Evaluation::Interpreted => None,
+            },
             n,
             work: RefCell::new(Work {
                 slots,
@@ -369,10 +407,20 @@ struct Work {
     b: Vec<f64>,
 }
 
+/// How a model's right-hand side is evaluated.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Evaluation {
+    /// The tape compiled to machine code at load ([`tumble_jit`], Cranelift).
+    Native,
+    /// The tape interpreted instruction by instruction.
+    Interpreted,
+}
+
 /// A model's first-order system `(q, q̇)' = (q̇, M⁻¹ f)` at fixed parameters.
 #[derive(Debug)]
 pub struct ModelOde<'a> {
     tape: &'a Tape,
+    native: Option<Native>,
     n: usize,
     work: RefCell<Work>,
 }
@@ -385,7 +433,10 @@ impl ModelOde<'_> {
             let m = (inputs - 1).min(y.len());
             w.slots[1..=m].copy_from_slice(&y[..m]);
         }
-        self.tape.run(&mut w.slots);
+        match self.native {
+            Some(f) => f.run(&mut w.slots),
+            None => self.tape.run(&mut w.slots),
+        }
     }
 
     /// `M(q, t)` at `(t, y)`, row-major.

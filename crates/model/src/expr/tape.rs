@@ -7,6 +7,7 @@
 //! run per evaluation by [`Tape::run`].
 
 use super::{Fun, Graph, Id, Node};
+use tumble_jit::{Fn1, Fn2, JitError, Native, Program};
 
 /// One operation of a tape.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -172,6 +173,32 @@ impl Tape {
         }
     }
 
+    /// The body compiled to native code ([`tumble_jit`]): run on a workspace prepared as for
+    /// [`Tape::run`] (inputs set, prelude run), it leaves the same bits in the output slots.
+    /// Square roots and absolute values are single instructions, integer powers the
+    /// multiplications of `f64::powi`, and the other functions calls of the same Rust
+    /// functions the interpreter calls ([`Fun::apply`]), so nothing is computed differently.
+    ///
+    /// # Errors
+    /// [`JitError`] where the machine has no code generator (the interpreter then serves).
+    pub fn compile(&self) -> Result<Native, JitError> {
+        let code: Vec<tumble_jit::Instr> = self
+            .body
+            .iter()
+            .map(|ins| tumble_jit::Instr {
+                op: native_op(ins.op),
+                dst: ins.dst,
+                a: ins.a,
+                b: ins.b,
+            })
+            .collect();
+        Native::compile(&Program {
+            slots: self.slots,
+            code: &code,
+            outputs: &self.outputs,
+        })
+    }
+
     /// Runs the prelude: after the fixed inputs are set in `w` (`w[k]` for input `k`).
     pub fn run_prelude(&self, w: &mut [f64]) {
         Self::exec(&self.prelude, w);
@@ -202,4 +229,64 @@ impl Tape {
     pub fn outputs(&self) -> usize {
         self.outputs.len()
     }
+}
+
+/// The compiled form of an operation: the same arithmetic, or a call of the function the
+/// interpreter applies.
+fn native_op(op: Op) -> tumble_jit::Op {
+    use tumble_jit::Op as N;
+    match op {
+        Op::Const(c) => N::Const(c),
+        Op::Add => N::Add,
+        Op::Sub => N::Sub,
+        Op::Mul => N::Mul,
+        Op::Div => N::Div,
+        Op::Neg => N::Neg,
+        Op::Powi(m) => N::Powi(m),
+        Op::Pow => N::Call2(pow as Fn2),
+        Op::Atan2 => N::Call2(atan2 as Fn2),
+        Op::Call(Fun::Sqrt) => N::Sqrt,
+        Op::Call(Fun::Abs) => N::Abs,
+        Op::Call(f) => N::Call1(match f {
+            Fun::Sin => sin as Fn1,
+            Fun::Cos => cos,
+            Fun::Tan => tan,
+            Fun::Asin => asin,
+            Fun::Acos => acos,
+            Fun::Atan => atan,
+            Fun::Sinh => sinh,
+            Fun::Cosh => cosh,
+            Fun::Tanh => tanh,
+            Fun::Exp => exp,
+            Fun::Log => log,
+            Fun::Sign => sign,
+            Fun::Sqrt => sqrt,
+            Fun::Abs => abs,
+        }),
+    }
+}
+
+/// The functions compiled code calls: each is [`Fun::apply`] of its function, with the C ABI.
+macro_rules! c_functions {
+    ($($name:ident => $fun:ident),* $(,)?) => {
+        $(
+            extern "C" fn $name(x: f64) -> f64 {
+                Fun::$fun.apply(x)
+            }
+        )*
+    };
+}
+
+c_functions!(
+    sin => Sin, cos => Cos, tan => Tan, asin => Asin, acos => Acos, atan => Atan,
+    sinh => Sinh, cosh => Cosh, tanh => Tanh, exp => Exp, log => Log, sign => Sign,
+    sqrt => Sqrt, abs => Abs,
+);
+
+extern "C" fn pow(x: f64, y: f64) -> f64 {
+    x.powf(y)
+}
+
+extern "C" fn atan2(a: f64, b: f64) -> f64 {
+    a.atan2(b)
 }

@@ -5,6 +5,7 @@ mod drawing;
 mod expr;
 mod fuzz;
 mod models;
+mod native;
 mod support;
 mod taylor;
 mod twins;
