@@ -4,7 +4,10 @@
 //! - `heavy-top`: the built-in's flattened rigid body `(R, Π) ∈ ℝ¹²` against
 //!   `models/heavy-top.toml` (ZXZ Euler angles, `(q, q̇) ∈ ℝ⁶`);
 //! - `free-hoop`: the built-in's flattened SO(3) × ℝ model `∈ ℝ¹⁴` against
-//!   `models/free-hoop-euler.toml` (ZYZ angles and the bead, `(q, q̇) ∈ ℝ⁸`).
+//!   `models/free-hoop-euler.toml` (ZYZ angles and the bead, `(q, q̇) ∈ ℝ⁸`);
+//! - both again against the models with the orientation on SO(3)
+//!   (`models/heavy-top-so3.toml` on ℝ¹², `models/free-hoop-so3.toml` on ℝ¹⁴): the same state
+//!   and the same physics as the built-ins, only written as energies.
 //!
 //! Each model runs two ways: its tape compiled to native code at load (`tumble-jit`, the
 //! default) and interpreted. Each round times a batch of evaluations of each of the three
@@ -71,7 +74,8 @@ fn compile_ms(scene: &ModelScene) -> f64 {
 
 fn report(name: &str, [b, native, interpreted]: [f64; 3], scene: &ModelScene) {
     println!(
-        "{name:<10}  {b:>11.1}  {native:>10.1}  {:>6.2}  {interpreted:>15.1}  {:>6.2}  {:>6}  {:>10.1}",
+        "{name:<10}  {:<16}  {b:>11.1}  {native:>10.1}  {:>6.2}  {interpreted:>15.1}  {:>6.2}  {:>6}  {:>10.1}",
+        scene.info().name,
         native / b,
         interpreted / b,
         scene.rhs_instructions(),
@@ -125,6 +129,9 @@ fn main() {
     model_sides::<6>("heavy-top", shipped("heavy-top"), &mut || {
         flat.rhs(black_box(0.0), black_box(&y), black_box(&mut dy));
     });
+    model_sides::<12>("heavy-top", shipped("heavy-top-so3"), &mut || {
+        flat.rhs(black_box(0.0), black_box(&y), black_box(&mut dy));
+    });
 
     // Free hoop.
     let params = FreeHoopScene.info().default_params();
@@ -133,6 +140,9 @@ fn main() {
     let y = flatten_hoop(&s0);
     let mut dy = y;
     model_sides::<8>("free-hoop", shipped("free-hoop-euler"), &mut || {
+        flat.rhs(black_box(0.0), black_box(&y), black_box(&mut dy));
+    });
+    model_sides::<14>("free-hoop", shipped("free-hoop-so3"), &mut || {
         flat.rhs(black_box(0.0), black_box(&y), black_box(&mut dy));
     });
 }

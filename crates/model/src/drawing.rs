@@ -129,17 +129,20 @@ impl ModelScene {
         let tape = Tape::with_fixed(&model.graph, &outputs, &fixed);
         let mut w = tape.workspace();
         let inputs = self.parameter_inputs(params);
-        let n = layout.n;
         let set = inputs.len().min(tape.inputs()).min(w.len());
         w[..set].copy_from_slice(&inputs[..set]);
         tape.run_prelude(&mut w);
         let identity = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+        // `t`, then each orientation's quaternion and angular velocity, the coordinates, rates.
+        let shown = 1 + 2 * layout.n + 7 * layout.so3;
         rows.iter()
-            .filter(|row| row.len() > 2 * n)
+            .filter(|row| row.len() >= shown)
             .map(|row| {
-                // Time, coordinates and rates are inputs 0 ..= 2n, as in the rows.
-                let varying = (2 * n + 1).min(set);
-                w[..varying].copy_from_slice(&row[..varying]);
+                // Time and the state are inputs 0 ..= state_len; a row shows orientations on
+                // SO(3) as quaternions.
+                let state = self.state_of_row(row);
+                let varying = state.len().min(set);
+                w[..varying].copy_from_slice(&state[..varying]);
                 tape.run(&mut w);
                 let mut k = 0;
                 let mut next = || {

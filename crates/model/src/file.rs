@@ -23,6 +23,12 @@
 //! angles = ["spin", "pi/2", "0"]             # ... or: rotations = [["z", "phi"], ["x", "theta"]]
 //! parent = "ring"                            # optional: turns with another frame (gimbals)
 //!
+//! [frames.body]                              # an orientation integrated on SO(3)
+//! orientation = "so3"                        # R and ω are state: no angles, no gimbal lock
+//! angles = ["0", "theta0", "0"]              # the initial orientation (or `rotations`)
+//! omega = ["0", "0", "spin0"]                # the initial body angular velocity
+//! # expressions read body_R11 … body_R33, and body_omega_x … where rates are in scope
+//!
 //! [rotating_frame]                           # optional: the model frame turns (the Earth)
 //! omega = ["0", "W*sin(colat)", "W*cos(colat)"]
 //!
@@ -80,6 +86,10 @@ use crate::units;
 pub const MAX_FILE_BYTES: usize = 1 << 20;
 /// The most generalized coordinates a model may have.
 pub const MAX_COORDINATES: usize = 6;
+/// The most frames integrated on SO(3) a model may have.
+pub const MAX_SO3_FRAMES: usize = 1;
+/// The most scalar coordinates beside an orientation on SO(3).
+pub const MAX_COORDINATES_WITH_SO3: usize = 3;
 /// The most nodes a model's expressions and derivatives may grow to.
 pub const MAX_NODES: usize = 200_000;
 
@@ -153,8 +163,10 @@ pub struct Model {
     pub summary: String,
     /// Parameters, in order.
     pub params: Vec<ParamDef>,
-    /// Coordinates, in state order.
+    /// Scalar coordinates, in state order.
     pub coordinates: Vec<String>,
+    /// Orientations integrated on SO(3), in state order after the scalar coordinates.
+    pub orientations: Vec<Orientation>,
     /// The graph.
     pub graph: Graph,
     /// The input layout.
@@ -173,6 +185,18 @@ pub struct Model {
     pub origin: String,
     /// Its bodies and point masses, to draw them.
     pub drawing: ModelDrawing,
+}
+
+/// A frame whose orientation is integrated on SO(3) (`orientation = "so3"`): its rotation
+/// matrix and body angular velocity are state, not functions of coordinates.
+#[derive(Debug, Clone)]
+pub struct Orientation {
+    /// The frame's name.
+    pub name: String,
+    /// The initial rotation (body → model frame, by rows), of the parameters.
+    pub initial_rotation: M3,
+    /// The initial angular velocity in the body frame, of the parameters.
+    pub initial_omega: V3,
 }
 
 /// A model's bodies and point masses as nodes of its graph: where they are and what they
@@ -248,6 +272,8 @@ struct RawCoordinate {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawFrame {
+    orientation: Option<Spanned<String>>,
+    omega: Option<Spanned<Vec<Spanned<toml::Value>>>>,
     euler: Option<Spanned<String>>,
     angles: Option<Spanned<Vec<Spanned<toml::Value>>>>,
     rotations: Option<Spanned<Vec<Spanned<RawRotation>>>>,
@@ -619,27 +645,64 @@ impl Model {
             params.push(def);
         }
 
+        // Orientations on SO(3): counted first, their inputs come before the rates.
+        let so3_frames: Vec<(Spanned<String>, Spanned<String>)> = raw
+            .frames
+            .iter()
+            .flatten()
+            .filter_map(|(name, f)| f.get_ref().orientation.clone().map(|o| (name.clone(), o)))
+            .collect();
+        for (name, o) in &so3_frames {
+            if o.get_ref() != "so3" {
+                return Err(src.invalid(
+                    &o.span(),
+                    &format!("frames.{}.orientation", name.get_ref()),
+                    format!(
+                        "unknown orientation {:?}; write \"so3\" (integrated on the rotation group), or leave it out for a frame given by `angles` or `rotations`",
+                        o.get_ref()
+                    ),
+                ));
+            }
+        }
+        if so3_frames.len() > MAX_SO3_FRAMES {
+            return Err(src.invalid(
+                &so3_frames[MAX_SO3_FRAMES].0.span(),
+                "frames",
+                format!(
+                    "{} frames with orientation = \"so3\": a model may have at most {MAX_SO3_FRAMES}; give the others by `angles` or `rotations`",
+                    so3_frames.len()
+                ),
+            ));
+        }
+
         // Coordinates.
         let coordinates = ordered(raw.coordinates);
-        if coordinates.is_empty() {
+        let max_coordinates = if so3_frames.is_empty() {
+            MAX_COORDINATES
+        } else {
+            MAX_COORDINATES_WITH_SO3
+        };
+        if coordinates.is_empty() && so3_frames.is_empty() {
             return Err(src.invalid(
                 &raw.model.span(),
                 "coordinates",
                 "a model needs at least one coordinate: [coordinates] NAME = { initial = \"...\" }",
             ));
         }
-        if coordinates.len() > MAX_COORDINATES {
+        if coordinates.len() > max_coordinates {
             return Err(src.invalid(
-                &coordinates[MAX_COORDINATES].0.span(),
+                &coordinates[max_coordinates].0.span(),
                 "coordinates",
                 format!(
-                    "{} coordinates: a model may have at most {MAX_COORDINATES}",
+                    "{} coordinates: a model may have at most {MAX_COORDINATES}, or \
+                     {MAX_COORDINATES_WITH_SO3} beside an orientation on SO(3)",
                     coordinates.len()
                 ),
             ));
         }
         let layout = Layout {
             n: coordinates.len(),
+            so3: so3_frames.len(),
         };
         let mut scope = Names::new();
         for (j, p) in params.iter().enumerate() {
@@ -699,14 +762,35 @@ impl Model {
         // Frames.
         let mut frames: HashMap<String, (M3, V3)> = HashMap::new();
         let mut chains: HashMap<String, Chain> = HashMap::new();
+        let mut orientations: Vec<Orientation> = Vec::new();
         for (name, f) in ordered(raw.frames) {
             let key = format!("frames.{}", name.get_ref());
             if chains.contains_key(name.get_ref()) {
                 return Err(src.invalid(&name.span(), &key, "declared twice"));
             }
             let f = f.get_ref();
+            if f.orientation.is_some() {
+                let (r, w) = so3_frame(
+                    &src,
+                    &key,
+                    f,
+                    &mut graph,
+                    &param_scope,
+                    &mut orientations,
+                    name.get_ref(),
+                    layout,
+                )?;
+                frames.insert(name.get_ref().clone(), (r, w));
+                continue;
+            }
+            if let Some(w) = &f.omega {
+                return Err(src.invalid(&w.span(), &format!("{key}.omega"), "is the initial angular velocity of an orientation on SO(3); with `orientation = \"so3\"` it is read, otherwise the angular velocity follows from the angles' rates"));
+            }
             let mut links = match &f.parent {
                 None => Vec::new(),
+                Some(p) if orientations.iter().any(|o| &o.name == p.get_ref()) => {
+                    return Err(src.invalid(&p.span(), &format!("{key}.parent"), format!("`{}` is an orientation on SO(3), which cannot carry other frames yet; give `{}` by `angles` or `rotations` in the model frame", p.get_ref(), name.get_ref())));
+                }
                 Some(p) => chains
                     .get(p.get_ref())
                     .ok_or_else(|| {
@@ -765,6 +849,26 @@ impl Model {
             frames.insert(name.get_ref().clone(), (r, w));
             chains.insert(name.get_ref().clone(), chain);
         }
+        // The rotation matrix and angular velocity of each orientation on SO(3), by name:
+        // `NAME_R13` (row 1, column 3) in positions, the potential and outputs,
+        // `NAME_omega_x` where rates are in scope.
+        let mut so3_rates = Vec::new();
+        for (f, o) in orientations.iter().enumerate() {
+            let key = format!("frames.{}", o.name);
+            for a in 0..3 {
+                for b in 0..3 {
+                    let entry = format!("{}_R{}{}", o.name, a + 1, b + 1);
+                    claim(&src, &key, &Spanned::new(0..0, entry.clone()))?;
+                    let id = graph.input(layout.rot(f, a, b));
+                    scope.insert(&entry, id);
+                }
+            }
+            for (c, axis) in ["x", "y", "z"].into_iter().enumerate() {
+                let rate = format!("{}_omega_{axis}", o.name);
+                claim(&src, &key, &Spanned::new(0..0, rate.clone()))?;
+                so3_rates.push((rate, graph.input(layout.omega(f, c))));
+            }
+        }
         let frame_of = |src: &Src<'_>,
                         key: &str,
                         f: &Option<Spanned<String>>|
@@ -803,25 +907,50 @@ impl Model {
             Some(g) => Some(src.vector("lagrangian.gravity", g, &mut graph, &scope)?),
             None => None,
         };
-        // ½ m |ṙ + Ω × r|² and −m g·r for a mass at r (model frame).
-        let translational =
-            |graph: &mut Graph, mass: Id, r: V3, kinetic: &mut Vec<Id>, potential: &mut Vec<Id>| {
-                let mut alg = Algebra { g: graph };
-                let mut v = alg.time_derivative3(r, layout);
-                if let Some(w) = alg_frame_omega {
-                    let wr = alg.cross(w, r);
-                    v = alg.add3(v, wr);
+        // ½ m |ṙ + Ω × r|² and −m g·r for a mass at r (model frame). For a mass at
+        // `r = origin + R x` carried by an orientation on SO(3) (`on_so3 = Some((ω, x, origin))`)
+        // about a fixed origin in a model frame that does not turn, |ṙ| = |ω × x + ẋ|: the
+        // same value on SO(3), written without R, so that the kinetic energy and the mass
+        // matrix do not depend on the orientation (as a body's does not).
+        let translational = |graph: &mut Graph,
+                             mass: Id,
+                             r: V3,
+                             on_so3: Option<(V3, V3, V3)>,
+                             kinetic: &mut Vec<Id>,
+                             potential: &mut Vec<Id>| {
+            let mut alg = Algebra { g: graph };
+            let body_frame = on_so3.filter(|(_, _, origin)| {
+                alg_frame_omega.is_none()
+                    && alg
+                        .time_derivative3(*origin, layout)
+                        .iter()
+                        .all(|d| alg.g.as_const(*d) == Some(0.0))
+            });
+            let v = match body_frame {
+                Some((w, x, _)) => {
+                    let xd = alg.time_derivative3(x, layout);
+                    let wx = alg.cross(w, x);
+                    alg.add3(wx, xd)
                 }
-                let v2 = alg.dot(v, v);
-                let half = alg.g.constant(0.5);
-                let hm = alg.g.mul(half, mass);
-                kinetic.push(alg.g.mul(hm, v2));
-                if let Some(g) = gravity {
-                    let gr = alg.dot(g, r);
-                    let mgr = alg.g.mul(mass, gr);
-                    potential.push(alg.g.neg(mgr));
+                None => {
+                    let mut v = alg.time_derivative3(r, layout);
+                    if let Some(w) = alg_frame_omega {
+                        let wr = alg.cross(w, r);
+                        v = alg.add3(v, wr);
+                    }
+                    v
                 }
             };
+            let v2 = alg.dot(v, v);
+            let half = alg.g.constant(0.5);
+            let hm = alg.g.mul(half, mass);
+            kinetic.push(alg.g.mul(hm, v2));
+            if let Some(g) = gravity {
+                let gr = alg.dot(g, r);
+                let mgr = alg.g.mul(mass, gr);
+                potential.push(alg.g.neg(mgr));
+            }
+        };
         let zero = graph.constant(0.0);
         let mut drawing = ModelDrawing::default();
         for (name, b) in ordered(raw.bodies) {
@@ -933,10 +1062,16 @@ impl Model {
                     (rc, alg_frame_omega)
                 }
             };
+            let on_so3 = b
+                .frame
+                .as_ref()
+                .filter(|f| orientations.iter().any(|o| &o.name == f.get_ref()))
+                .and_then(|_| frame.map(|(_, w)| (w, com, origin)));
             translational(
                 &mut graph,
                 mass,
                 rc,
+                on_so3,
                 &mut kinetic_terms,
                 &mut potential_terms,
             );
@@ -958,6 +1093,11 @@ impl Model {
                 Some(o) => src.vector(&format!("{key}.origin"), o, &mut graph, &scope)?,
                 None => [zero; 3],
             };
+            let on_so3 = p
+                .frame
+                .as_ref()
+                .filter(|f| orientations.iter().any(|o| &o.name == f.get_ref()))
+                .and_then(|_| frame.map(|(_, w)| (w, local, origin)));
             let mut alg = Algebra { g: &mut graph };
             let r = match frame {
                 Some((rot, _)) => alg.mat_vec(&rot, local),
@@ -973,6 +1113,7 @@ impl Model {
                 &mut graph,
                 mass,
                 r,
+                on_so3,
                 &mut kinetic_terms,
                 &mut potential_terms,
             );
@@ -987,6 +1128,9 @@ impl Model {
         for (i, name) in names.iter().enumerate() {
             let id = graph.input(layout.qd(i));
             rate_scope.insert(&format!("{name}_dot"), id);
+        }
+        for (name, id) in &so3_rates {
+            rate_scope.insert(name, *id);
         }
         if let Some(v) = &extra.kinetic {
             kinetic_terms.push(src.expr("lagrangian.kinetic", v, &mut graph, &rate_scope)?);
@@ -1038,6 +1182,7 @@ impl Model {
             summary: header.summary.unwrap_or_default(),
             params,
             coordinates: names,
+            orientations,
             graph,
             layout,
             equations,
@@ -1049,6 +1194,84 @@ impl Model {
             drawing,
         })
     }
+}
+
+/// A frame integrated on SO(3): its initial orientation from `angles` (of `euler`) or
+/// `rotations`, and its initial body angular velocity `omega`, both of the parameters; returns
+/// its rotation and angular velocity, which are state inputs.
+#[allow(clippy::too_many_arguments)]
+fn so3_frame(
+    src: &Src<'_>,
+    key: &str,
+    f: &RawFrame,
+    graph: &mut Graph,
+    param_scope: &Names,
+    orientations: &mut Vec<Orientation>,
+    name: &str,
+    layout: Layout,
+) -> Result<(M3, V3), ModelFileError> {
+    if let Some(p) = &f.parent {
+        return Err(src.invalid(
+            &p.span(),
+            &format!("{key}.parent"),
+            "an orientation on SO(3) turns in the model frame; leave `parent` out",
+        ));
+    }
+    let mut links = Vec::new();
+    match (&f.angles, &f.rotations) {
+        (Some(angles), None) => {
+            let convention = match &f.euler {
+                None => EulerConvention::ARTICLE,
+                Some(e) => e.get_ref().parse::<EulerConvention>().map_err(|_| {
+                    src.invalid(&e.span(), &format!("{key}.euler"), format!("unknown convention {:?}; write an axis sequence such as \"zyz\", \"zxz\", \"xyz\", optionally \"extrinsic-xyz\"", e.get_ref()))
+                })?,
+            };
+            let a = src.vector(&format!("{key}.angles"), angles, graph, param_scope)?;
+            let axes = convention.sequence.axes().map(|x| x.index());
+            links.extend(match convention.kind {
+                RotationKind::Intrinsic => [(axes[0], a[0]), (axes[1], a[1]), (axes[2], a[2])],
+                RotationKind::Extrinsic => [(axes[2], a[2]), (axes[1], a[1]), (axes[0], a[0])],
+            });
+        }
+        (None, Some(rotations)) => {
+            for (k, r) in rotations.get_ref().iter().enumerate() {
+                let rk = format!("{key}.rotations[{}]", k + 1);
+                let (ax, angle) = r.get_ref();
+                let ax = axis(ax).ok_or_else(|| {
+                    src.invalid(
+                        &r.span(),
+                        &rk,
+                        format!("unknown axis {ax:?}; write \"x\", \"y\" or \"z\""),
+                    )
+                })?;
+                links.push((ax, src.expr(&rk, angle, graph, param_scope)?));
+            }
+        }
+        (None, None) => {}
+        (Some(a), Some(_)) => {
+            return Err(src.invalid(
+                &a.span(),
+                key,
+                "gives its initial orientation by `angles` or by `rotations`, not both",
+            ));
+        }
+    }
+    let omega = match &f.omega {
+        Some(w) => src.vector(&format!("{key}.omega"), w, graph, param_scope)?,
+        None => {
+            let z = graph.constant(0.0);
+            [z; 3]
+        }
+    };
+    let mut alg = Algebra { g: graph };
+    let initial_rotation = Chain { links }.rotation(&mut alg);
+    let k = orientations.len();
+    orientations.push(Orientation {
+        name: name.to_string(),
+        initial_rotation,
+        initial_omega: omega,
+    });
+    Ok((layout.rotation(graph, k), layout.angular_velocity(graph, k)))
 }
 
 /// The text of the model file at `path`, refused unread when larger than [`MAX_FILE_BYTES`].

@@ -22,11 +22,16 @@ pub type V3 = [Id; 3];
 /// A 3×3 matrix of nodes, by rows.
 pub type M3 = [[Id; 3]; 3];
 
-/// The input layout of a model: `t`, then `n` coordinates, `n` rates, then the parameters.
+/// The input layout of a model: `t`, then the configuration (`n` coordinates, then the
+/// rotation matrix of each of `so3` frames integrated on SO(3), by rows), then the velocities
+/// (`n` rates, then each SO(3) frame's body angular velocity), then the parameters. Inputs
+/// `1 ..` are the state `y` in order: input `k + 1` is `y[k]`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Layout {
-    /// Number of generalized coordinates.
+    /// Number of scalar generalized coordinates.
     pub n: usize,
+    /// Number of orientations integrated on SO(3).
+    pub so3: usize,
 }
 
 impl Layout {
@@ -39,22 +44,73 @@ impl Layout {
         1 + i as u32
     }
 
+    /// The input number of entry `(a, b)` of SO(3) frame `f`'s rotation matrix.
+    #[must_use]
+    pub fn rot(self, f: usize, a: usize, b: usize) -> u32 {
+        (1 + self.n + 9 * f + 3 * a + b) as u32
+    }
+
     /// The input number of the rate of coordinate `i`.
     #[must_use]
     pub fn qd(self, i: usize) -> u32 {
-        (1 + self.n + i) as u32
+        (1 + self.n + 9 * self.so3 + i) as u32
+    }
+
+    /// The input number of component `c` of SO(3) frame `f`'s body angular velocity.
+    #[must_use]
+    pub fn omega(self, f: usize, c: usize) -> u32 {
+        (1 + 2 * self.n + 9 * self.so3 + 3 * f + c) as u32
+    }
+
+    /// Number of velocities (the mass matrix's size): the rates and the angular velocities.
+    #[must_use]
+    pub fn dof(self) -> usize {
+        self.n + 3 * self.so3
+    }
+
+    /// The input number of velocity `i` (rates first, then angular velocities): `i < dof()`.
+    #[must_use]
+    pub fn velocity(self, i: usize) -> u32 {
+        if i < self.n {
+            self.qd(i)
+        } else {
+            let k = i - self.n;
+            self.omega(k / 3, k % 3)
+        }
+    }
+
+    /// Length of the state `y`: configuration, then velocities.
+    #[must_use]
+    pub fn state_len(self) -> usize {
+        2 * self.n + 12 * self.so3
+    }
+
+    /// Index in `y` of the first velocity.
+    #[must_use]
+    pub fn velocities_at(self) -> usize {
+        self.n + 9 * self.so3
     }
 
     /// The input number of parameter `j`.
     #[must_use]
     pub fn param(self, j: usize) -> u32 {
-        (1 + 2 * self.n + j) as u32
+        (1 + self.state_len() + j) as u32
     }
 
     /// Whether input `k` is a parameter (fixed during a run).
     #[must_use]
     pub fn is_param(self, k: u32) -> bool {
-        k as usize > 2 * self.n
+        k as usize > self.state_len()
+    }
+
+    /// SO(3) frame `f`'s rotation matrix as inputs.
+    pub fn rotation(self, g: &mut Graph, f: usize) -> M3 {
+        [0, 1, 2].map(|a| [0, 1, 2].map(|b| g.input(self.rot(f, a, b))))
+    }
+
+    /// SO(3) frame `f`'s body angular velocity as inputs.
+    pub fn angular_velocity(self, g: &mut Graph, f: usize) -> V3 {
+        [0, 1, 2].map(|c| g.input(self.omega(f, c)))
     }
 }
 
@@ -142,14 +198,44 @@ impl Algebra<'_> {
         }
     }
 
-    /// The total time derivative `∂e/∂t + Σᵢ ∂e/∂qᵢ q̇ᵢ` of an expression of `t` and the
-    /// coordinates.
+    /// The left-trivialized derivative of `e` along SO(3) frame `f`'s rotation `R`: the vector
+    /// `τ` with `d/dε e(R exp(ε ĥ))|₀ = τ · h`. With `A = (∂e/∂R)ᵀ R`,
+    /// `τ = (A₂₃ − A₃₂, A₃₁ − A₁₃, A₁₂ − A₂₁)` (`tr(A ĥ)` written out). For
+    /// `e = −m g l e_z · R e₃` (a heavy top) it is the gravity torque `m g l Γ × e₃`,
+    /// `Γ = Rᵀ e_z` (Holm, *Geometric Mechanics* II, §7).
+    pub fn rotation_derivative(&mut self, e: Id, layout: Layout, f: usize) -> V3 {
+        let r = layout.rotation(self.g, f);
+        let de: M3 = [0, 1, 2].map(|a| [0, 1, 2].map(|b| self.g.diff(e, layout.rot(f, a, b))));
+        // A_ab = Σ_c ∂e/∂R_ca R_cb.
+        let mut a = [[de[0][0]; 3]; 3];
+        for i in 0..3 {
+            for j in 0..3 {
+                let terms = [0, 1, 2].map(|c| self.g.mul(de[c][i], r[c][j]));
+                a[i][j] = self.g.sum(&terms);
+            }
+        }
+        let pair = |g: &mut Graph, (i, j): (usize, usize)| g.sub(a[i][j], a[j][i]);
+        [
+            pair(self.g, (1, 2)),
+            pair(self.g, (2, 0)),
+            pair(self.g, (0, 1)),
+        ]
+    }
+
+    /// The total time derivative of an expression of `t` and the configuration:
+    /// `∂e/∂t + Σᵢ ∂e/∂qᵢ q̇ᵢ + Σ_f ω_f · τ_f(e)`, the last sum over the SO(3) frames, whose
+    /// rotations move as `Ṙ = R ω̂` ([`Self::rotation_derivative`]).
     pub fn time_derivative(&mut self, e: Id, layout: Layout) -> Id {
         let mut terms = vec![self.g.diff(e, Layout::T)];
         for i in 0..layout.n {
             let d = self.g.diff(e, layout.q(i));
             let qd = self.g.input(layout.qd(i));
             terms.push(self.g.mul(d, qd));
+        }
+        for f in 0..layout.so3 {
+            let tau = self.rotation_derivative(e, layout, f);
+            let w = layout.angular_velocity(self.g, f);
+            terms.push(self.dot(w, tau));
         }
         self.g.sum(&terms)
     }
@@ -201,15 +287,15 @@ impl Chain {
 /// The assembled equations of a model.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Equations {
-    /// `M(q, t)`, row-major, `n × n`.
+    /// `M`, row-major, `dof × dof` over the velocities ([`Layout::velocity`]).
     pub mass: Vec<Id>,
-    /// `f(q, q̇, t)`.
+    /// `f`, one per velocity.
     pub force: Vec<Id>,
     /// The energy function `h = Σ q̇ᵢ pᵢ − L`.
     pub energy: Id,
-    /// The momenta `pᵢ = ∂L/∂q̇ᵢ`.
+    /// The momenta `∂L/∂vᵢ`, one per velocity (`Π` of each SO(3) frame after the rates').
     pub momenta: Vec<Id>,
-    /// `∂L/∂qᵢ`: zero for a cyclic coordinate.
+    /// `∂L/∂qᵢ` of the scalar coordinates: zero for a cyclic coordinate.
     pub dl_dq: Vec<Id>,
     /// `∂L/∂t`: zero when the energy function is conserved.
     pub dl_dt: Id,
@@ -217,39 +303,63 @@ pub struct Equations {
     pub lagrangian: Id,
 }
 
-/// The Euler–Lagrange equations of `lagrangian` in the layout's coordinates.
+/// The equations of motion of `lagrangian` in the layout's velocities `v = (q̇, ω_1, …)`:
+/// `M v̇ = f` with `M = ∂²L/∂v²`, and `f = g − D_t(∂L/∂v)` where `D_t` is the time derivative
+/// at fixed velocities ([`Algebra::time_derivative`]) and `g` the generalized force:
+/// `∂L/∂qᵢ` for a scalar coordinate (Euler–Lagrange), `Π × ω + τ(L)` for an orientation on
+/// SO(3) with `Π = ∂L/∂ω` (Euler–Poincaré with the configuration's torque: Holm, *Geometric
+/// Mechanics* II, §7; Marsden & Ratiu, *Introduction to Mechanics and Symmetry*, §13).
 pub fn equations(g: &mut Graph, lagrangian: Id, layout: Layout) -> Equations {
-    let n = layout.n;
-    let momenta: Vec<Id> = (0..n).map(|i| g.diff(lagrangian, layout.qd(i))).collect();
-    let mut mass = Vec::with_capacity(n * n);
-    for i in 0..n {
-        for j in 0..n {
-            mass.push(g.diff(momenta[i], layout.qd(j)));
+    let dof = layout.dof();
+    let momenta: Vec<Id> = (0..dof)
+        .map(|i| g.diff(lagrangian, layout.velocity(i)))
+        .collect();
+    let mut mass = Vec::with_capacity(dof * dof);
+    for i in 0..dof {
+        for j in 0..dof {
+            mass.push(g.diff(momenta[i], layout.velocity(j)));
         }
     }
-    let mut force = Vec::with_capacity(n);
-    let mut dl_dq = Vec::with_capacity(n);
-    for i in 0..n {
-        let dl = g.diff(lagrangian, layout.q(i));
-        dl_dq.push(dl);
-        let mut terms = vec![dl];
-        for j in 0..n {
+    let dl_dq: Vec<Id> = (0..layout.n)
+        .map(|i| g.diff(lagrangian, layout.q(i)))
+        .collect();
+    let mut generalized = dl_dq.clone();
+    for f in 0..layout.so3 {
+        let mut alg = Algebra { g: &mut *g };
+        let pi = [0, 1, 2].map(|c| momenta[layout.n + 3 * f + c]);
+        let w = layout.angular_velocity(alg.g, f);
+        let gyro = alg.cross(pi, w);
+        let tau = alg.rotation_derivative(lagrangian, layout, f);
+        generalized.extend(alg.add3(gyro, tau));
+    }
+    // f_i = g_i − Σⱼ ∂pᵢ/∂qⱼ q̇ⱼ − Σ_f ω_f · τ_f(pᵢ) − ∂pᵢ/∂t.
+    let mut force = Vec::with_capacity(dof);
+    for i in 0..dof {
+        let mut terms = vec![generalized[i]];
+        for j in 0..layout.n {
             let d = g.diff(momenta[i], layout.q(j));
             let qd = g.input(layout.qd(j));
             let m = g.mul(d, qd);
             terms.push(g.neg(m));
         }
+        for f in 0..layout.so3 {
+            let mut alg = Algebra { g: &mut *g };
+            let tau = alg.rotation_derivative(momenta[i], layout, f);
+            let w = layout.angular_velocity(alg.g, f);
+            let wt = alg.dot(w, tau);
+            terms.push(g.neg(wt));
+        }
         let dt = g.diff(momenta[i], Layout::T);
         terms.push(g.neg(dt));
         force.push(g.sum(&terms));
     }
-    let pq: Vec<Id> = (0..n)
+    let pv: Vec<Id> = (0..dof)
         .map(|i| {
-            let qd = g.input(layout.qd(i));
-            g.mul(qd, momenta[i])
+            let v = g.input(layout.velocity(i));
+            g.mul(v, momenta[i])
         })
         .collect();
-    let sum = g.sum(&pq);
+    let sum = g.sum(&pv);
     let energy = g.sub(sum, lagrangian);
     let dl_dt = g.diff(lagrangian, Layout::T);
     Equations {

@@ -23,7 +23,7 @@ use std::sync::{Mutex, OnceLock};
 
 use nalgebra::SVector;
 use tumble_integrators::{Ode, ProblemKind};
-use tumble_scenarios::scene::{run_taylor_vector, run_vector};
+use tumble_scenarios::scene::{continuous_quaternion, run_taylor_vector, run_vector};
 use tumble_scenarios::{
     ParamSpec, Params, Recorder, RunPlan, RunSummary, Scene, SceneError, SceneInfo,
 };
@@ -31,7 +31,7 @@ use tumble_scenarios::{
 use crate::expr::tape::Tape;
 use crate::expr::taylor::TaylorPlan;
 use crate::file::{Model, ModelFileError};
-use crate::mechanics::cholesky_solve;
+use crate::mechanics::{Layout, cholesky_factor, cholesky_solve, cholesky_substitute};
 use crate::taylor::ModelTaylor;
 use tumble_jit::{JitError, Native};
 
@@ -47,14 +47,21 @@ pub struct ModelScene {
     rhs: Tape,
     /// `rhs`'s body as native code, where the machine has a code generator.
     native: Option<Native>,
+    /// Whether the mass matrix depends on the parameters only (a body on SO(3) with no
+    /// coordinates: its inertia): then it is factored once per run.
+    constant_mass: bool,
     /// Energy, momenta of the cyclic coordinates, outputs.
     row: Tape,
     /// Initial coordinates then rates (of the parameters).
     init: Tape,
     /// Every momentum (for [`ModelScene::momenta`]).
     momenta: Tape,
-    /// The series recursions of `rhs` ([`crate::taylor`]).
-    taylor: TaylorPlan,
+    /// The series recursions of `rhs` ([`crate::taylor`]); none for a model with an
+    /// orientation on SO(3), whose kinematics `Ṙ = R ω̂` the recursions do not cover.
+    taylor: Option<TaylorPlan>,
+    /// Names of the displayed coordinates and rates (quaternions and body angular velocities
+    /// for the orientations on SO(3), then the scalar coordinates and their rates).
+    display: Display,
 }
 
 fn leak(s: String) -> &'static str {
@@ -74,7 +81,12 @@ impl ModelScene {
         outputs.extend_from_slice(&eq.force);
         let rhs = Tape::with_fixed(&model.graph, &outputs, &fixed);
         let native = rhs.compile().ok();
-        let taylor = TaylorPlan::new(&rhs, 1 + 2 * n);
+        let constant_mass = eq
+            .mass
+            .iter()
+            .all(|&id| !model.graph.depends_on(id, &|k| !layout.is_param(k)));
+        let taylor = (layout.so3 == 0).then(|| TaylorPlan::new(&rhs, 1 + 2 * n));
+        let display = Display::of(&model);
         let mut row_out = vec![eq.energy];
         let mut diagnostics = vec![leak("energy".into()), leak("energy_rel_err".into())];
         let mut conserved = Vec::new();
@@ -99,8 +111,15 @@ impl ModelScene {
             diagnostics.push(leak(name.clone()));
         }
         let row = Tape::with_fixed(&model.graph, &row_out, &fixed);
+        // The initial state in state order: coordinates, rotations, rates, angular velocities.
         let mut init_out = model.initial.clone();
+        for o in &model.orientations {
+            init_out.extend(o.initial_rotation.iter().flatten());
+        }
         init_out.extend_from_slice(&model.initial_rates);
+        for o in &model.orientations {
+            init_out.extend_from_slice(&o.initial_omega);
+        }
         let init = Tape::new(&model.graph, &init_out);
         let momenta = Tape::new(&model.graph, &eq.momenta);
         let parameters: Vec<ParamSpec> = model
@@ -114,8 +133,12 @@ impl ModelScene {
                 domain: p.domain,
             })
             .collect();
-        let coordinates: Vec<&'static str> =
-            model.coordinates.iter().map(|c| leak(c.clone())).collect();
+        let coordinates: Vec<&'static str> = display
+            .coordinates
+            .iter()
+            .map(|c| leak(c.clone()))
+            .collect();
+        let rate_names: Vec<&'static str> = display.rates.iter().map(|c| leak(c.clone())).collect();
         let info = Box::leak(Box::new(SceneInfo {
             name: leak(model.name.clone()),
             summary: leak(if model.summary.is_empty() {
@@ -127,7 +150,11 @@ impl ModelScene {
             parameters: Box::leak(parameters.into_boxed_slice()),
             conserved: Box::leak(conserved.into_boxed_slice()),
             oracle: leak(format!("model file {}", model.origin)),
-            problems: &[ProblemKind::Ode, ProblemKind::TaylorSeries],
+            problems: if taylor.is_some() {
+                &[ProblemKind::Ode, ProblemKind::TaylorSeries]
+            } else {
+                &[ProblemKind::Ode]
+            },
             needs_dense_output: false,
             default_integrator: leak(model.run.integrator.clone()),
             default_step: model.run.dt,
@@ -135,17 +162,23 @@ impl ModelScene {
             default_error: f64::NAN,
             default_t_end: model.run.t_end,
             diagnostics: Box::leak(diagnostics.into_boxed_slice()),
-            rate_names: &[],
+            rate_names: if layout.so3 == 0 {
+                &[]
+            } else {
+                Box::leak(rate_names.into_boxed_slice())
+            },
         }));
         ModelScene {
             info,
             model,
             rhs,
             native,
+            constant_mass,
             row,
             init,
             momenta,
             taylor,
+            display,
         }
     }
 
@@ -226,43 +259,69 @@ impl ModelScene {
     /// same bits.
     #[must_use]
     pub fn ode_with(&self, params: &Params, evaluation: Evaluation) -> ModelOde<'_> {
-        let n = self.model.layout.n;
+        let layout = self.model.layout;
+        let dof = layout.dof();
         let mut slots = self.rhs.workspace();
         let inputs = self.inputs(params);
         let k = inputs.len().min(slots.len());
         slots[..k].copy_from_slice(&inputs[..k]);
         self.rhs.run_prelude(&mut slots);
+        // A mass matrix of the parameters alone is in the prelude's results: inverted here
+        // once (Cholesky, column by column), each evaluation then multiplies by the inverse.
+        let mut m = vec![0.0; dof * dof];
+        let mut factored = false;
+        if self.constant_mass {
+            let mut l = vec![0.0; dof * dof];
+            for (i, x) in l.iter_mut().enumerate() {
+                *x = self.rhs.output(&slots, i);
+            }
+            if cholesky_factor(&mut l, dof) > 0.0 {
+                let mut e = vec![0.0; dof];
+                for j in 0..dof {
+                    e.fill(0.0);
+                    e[j] = 1.0;
+                    cholesky_substitute(&l, &mut e, dof);
+                    for i in 0..dof {
+                        m[i * dof + j] = e[i];
+                    }
+                }
+                factored = true;
+            }
+        }
         ModelOde {
             tape: &self.rhs,
             native: match evaluation {
                 Evaluation::Native => self.native,
                 Evaluation::Interpreted => None,
             },
-            n,
+            layout,
             work: RefCell::new(Work {
                 slots,
-                m: vec![0.0; n * n],
-                b: vec![0.0; n],
+                m,
+                b: vec![0.0; dof],
+                factored,
             }),
         }
     }
 
     /// The equations at `params` as a system computing its Taylor coefficients (Taylor-mode
     /// automatic differentiation on the tape, [`crate::taylor`]), its storage allocated here.
+    /// `None` for a model with an orientation on SO(3).
     #[must_use]
-    pub fn taylor(&self, params: &Params) -> ModelTaylor<'_> {
-        ModelTaylor::new(
+    pub fn taylor(&self, params: &Params) -> Option<ModelTaylor<'_>> {
+        let plan = self.taylor.as_ref()?;
+        Some(ModelTaylor::new(
             &self.rhs,
-            &self.taylor,
+            plan,
             self.model.layout.n,
             self.inputs(params),
-        )
+        ))
     }
 
     /// Refuses an initial state where the mass matrix is singular or ill-conditioned, naming
     /// the coordinate along which it degenerates.
     fn check_conditioning(&self, ode: &ModelOde<'_>, y: &[f64]) -> Result<(), SceneError> {
-        let n = self.model.layout.n;
+        let n = self.model.layout.dof();
         let m = ode.mass_matrix(0.0, y);
         let matrix = nalgebra::DMatrix::from_row_slice(n, n, &m);
         let eigen = nalgebra::SymmetricEigen::new(matrix);
@@ -299,9 +358,19 @@ impl ModelScene {
             }
             best
         };
-        let fault = (0..n)
-            .max_by(|&a, &b| lift(a).total_cmp(&lift(b)))
-            .unwrap_or(0);
+        // Only a scalar coordinate can be at fault: the angular velocities enter the mass
+        // matrix through the inertia, which does not depend on the orientation.
+        let fault = (0..self.model.layout.n).max_by(|&a, &b| lift(a).total_cmp(&lift(b)));
+        let Some(fault) = fault else {
+            return Err(SceneError::ModelRefused {
+                model: self.info.name.to_string(),
+                message: format!(
+                    "the mass matrix is singular at the initial state (condition number \
+                     {condition:e}, above {MAX_CONDITION:e}): a body turning on SO(3) needs \
+                     an inertia with three positive principal moments"
+                ),
+            });
+        };
         Err(SceneError::ModelRefused {
             model: self.info.name.to_string(),
             message: format!(
@@ -325,7 +394,9 @@ impl ModelScene {
     ) -> Result<RunSummary, SceneError> {
         let ode = self.ode(params);
         self.check_conditioning(&ode, y0)?;
-        let n = self.model.layout.n;
+        let layout = self.model.layout;
+        let state = layout.state_len();
+        let shown = self.display.len();
         let columns = self.info.columns().len();
         let mut row_w = self.row.workspace();
         let inputs = self.inputs(params);
@@ -333,28 +404,121 @@ impl ModelScene {
         row_w[..k].copy_from_slice(&inputs[..k]);
         self.row.run_prelude(&mut row_w);
         let row_tape = &self.row;
+        let display = &self.display;
+        let mut previous = vec![None; layout.so3];
         let row = move |t: f64, y: &SVector<f64, S>, out: &mut [f64]| {
             out[0] = t;
-            out[1..=2 * n].copy_from_slice(y.as_slice());
+            display.write(layout, y.as_slice(), &mut previous, &mut out[1..=shown]);
             let inputs = row_tape.inputs();
             if inputs > 0 {
                 row_w[0] = t;
-                let m = (inputs - 1).min(2 * n);
+                let m = (inputs - 1).min(state);
                 row_w[1..=m].copy_from_slice(&y.as_slice()[..m]);
             }
             row_tape.run(&mut row_w);
-            out[1 + 2 * n] = row_tape.output(&row_w, 0);
+            out[1 + shown] = row_tape.output(&row_w, 0);
             for i in 1..row_tape.outputs() {
-                out[2 + 2 * n + i] = row_tape.output(&row_w, i);
+                out[2 + shown + i] = row_tape.output(&row_w, i);
             }
         };
         let y = SVector::<f64, S>::from_column_slice(y0);
-        if plan.kind == ProblemKind::TaylorSeries {
-            let taylor = self.taylor(params);
-            run_taylor_vector(&taylor, y, plan, columns, 1 + 2 * n, row, &mut [], recorder)
-        } else {
-            run_vector(&ode, y, plan, columns, 1 + 2 * n, row, &mut [], recorder)
+        match (plan.kind, self.taylor(params)) {
+            (ProblemKind::TaylorSeries, Some(taylor)) => {
+                run_taylor_vector(&taylor, y, plan, columns, 1 + shown, row, &mut [], recorder)
+            }
+            _ => run_vector(&ode, y, plan, columns, 1 + shown, row, &mut [], recorder),
         }
+    }
+
+    /// The state `(t, y)` of a row of this scene's CSV (`t`, the displayed coordinates and
+    /// rates first): quaternions become rotation matrices again.
+    #[must_use]
+    pub fn state_of_row(&self, row: &[f64]) -> Vec<f64> {
+        let layout = self.model.layout;
+        let mut out = vec![0.0; 1 + layout.state_len()];
+        out[0] = row[0];
+        self.display.read(layout, &row[1..], &mut out[1..]);
+        out
+    }
+}
+
+/// How a model's state is shown in its rows: each orientation on SO(3) as a unit quaternion
+/// (sign continuous along the run) and its body angular velocity, the scalar coordinates and
+/// rates as they are.
+#[derive(Debug, Clone)]
+struct Display {
+    coordinates: Vec<String>,
+    rates: Vec<String>,
+}
+
+impl Display {
+    fn of(model: &Model) -> Self {
+        let single = model.orientations.len() == 1;
+        let prefix = |name: &str| {
+            if single {
+                String::new()
+            } else {
+                format!("{name}_")
+            }
+        };
+        let mut coordinates = Vec::new();
+        let mut rates = Vec::new();
+        for o in &model.orientations {
+            let p = prefix(&o.name);
+            coordinates.extend(["qw", "qx", "qy", "qz"].map(|c| format!("{p}{c}")));
+            rates.extend(["omega_x", "omega_y", "omega_z"].map(|c| format!("{p}{c}")));
+        }
+        coordinates.extend(model.coordinates.iter().cloned());
+        rates.extend(model.coordinates.iter().map(|c| format!("{c}_dot")));
+        Display { coordinates, rates }
+    }
+
+    /// Number of values shown.
+    fn len(&self) -> usize {
+        self.coordinates.len() + self.rates.len()
+    }
+
+    /// Writes the shown values of the state `y` into `out`.
+    fn write(
+        &self,
+        layout: Layout,
+        y: &[f64],
+        previous: &mut [Option<nalgebra::Quaternion<f64>>],
+        out: &mut [f64],
+    ) {
+        let (n, k, v) = (layout.n, layout.so3, layout.velocities_at());
+        for f in 0..k {
+            let r = nalgebra::Matrix3::from_row_slice(&y[n + 9 * f..n + 9 * f + 9]);
+            let q = continuous_quaternion(&r, &mut previous[f]);
+            out[4 * f..4 * f + 4].copy_from_slice(&[q.w, q.i, q.j, q.k]);
+        }
+        out[4 * k..4 * k + n].copy_from_slice(&y[..n]);
+        let base = 4 * k + n;
+        out[base..base + 3 * k].copy_from_slice(&y[v + n..v + n + 3 * k]);
+        out[base + 3 * k..base + 3 * k + n].copy_from_slice(&y[v..v + n]);
+    }
+
+    /// The state `y` of shown values (the inverse of [`Display::write`]).
+    fn read(&self, layout: Layout, shown: &[f64], y: &mut [f64]) {
+        let (n, k, v) = (layout.n, layout.so3, layout.velocities_at());
+        for f in 0..k {
+            let q = nalgebra::UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(
+                shown[4 * f],
+                shown[4 * f + 1],
+                shown[4 * f + 2],
+                shown[4 * f + 3],
+            ));
+            let r = q.to_rotation_matrix();
+            for a in 0..3 {
+                for b in 0..3 {
+                    y[n + 9 * f + 3 * a + b] = r[(a, b)];
+                }
+            }
+        }
+        y[..n].copy_from_slice(&shown[4 * k..4 * k + n]);
+        let base = 4 * k + n;
+        y[v + n..v + n + 3 * k].copy_from_slice(&shown[base..base + 3 * k]);
+        y[v..v + n].copy_from_slice(&shown[base + 3 * k..base + 3 * k + n]);
     }
 }
 
@@ -385,7 +549,7 @@ fn symmetries(model: &Model) -> (Vec<bool>, bool) {
     };
     for _ in 0..8 {
         inputs[0] = 3.0 * next();
-        for k in 0..2 * n {
+        for k in 0..model.layout.state_len() {
             inputs[1 + k] = 3.0 * next() - 1.5;
         }
         tape.run_all(&mut w, &inputs);
@@ -405,6 +569,8 @@ struct Work {
     slots: Vec<f64>,
     m: Vec<f64>,
     b: Vec<f64>,
+    /// `m` holds the inverse of a mass matrix that does not change during the run.
+    factored: bool,
 }
 
 /// How a model's right-hand side is evaluated.
@@ -421,7 +587,7 @@ pub enum Evaluation {
 pub struct ModelOde<'a> {
     tape: &'a Tape,
     native: Option<Native>,
-    n: usize,
+    layout: Layout,
     work: RefCell<Work>,
 }
 
@@ -444,7 +610,8 @@ impl ModelOde<'_> {
     pub fn mass_matrix(&self, t: f64, y: &[f64]) -> Vec<f64> {
         let w = &mut *self.work.borrow_mut();
         self.evaluate(t, y, w);
-        (0..self.n * self.n)
+        let dof = self.layout.dof();
+        (0..dof * dof)
             .map(|i| self.tape.output(&w.slots, i))
             .collect()
     }
@@ -452,21 +619,46 @@ impl ModelOde<'_> {
     /// Writes `(q̇, q̈)` for the state `y = (q, q̇)` into `dy`; NaN accelerations where the mass
     /// matrix is not positive definite (the driver then stops with the state).
     pub fn rhs_slice(&self, t: f64, y: &[f64], dy: &mut [f64]) {
-        let n = self.n;
+        let layout = self.layout;
+        let (n, dof, v) = (layout.n, layout.dof(), layout.velocities_at());
         let w = &mut *self.work.borrow_mut();
         self.evaluate(t, y, w);
-        let Work { slots, m, b } = w;
-        for i in 0..n * n {
+        let Work {
+            slots,
+            m,
+            b,
+            factored,
+        } = w;
+        for i in 0..dof {
+            b[i] = self.tape.output(slots, dof * dof + i);
+        }
+        // Kinematics: q' = q̇, and R' = R ω̂ for each orientation on SO(3).
+        dy[..n].copy_from_slice(&y[v..v + n]);
+        for f in 0..layout.so3 {
+            let r = n + 9 * f;
+            let o = v + n + 3 * f;
+            let (wx, wy, wz) = (y[o], y[o + 1], y[o + 2]);
+            for a in 0..3 {
+                let (r0, r1, r2) = (y[r + 3 * a], y[r + 3 * a + 1], y[r + 3 * a + 2]);
+                dy[r + 3 * a] = r1 * wz - r2 * wy;
+                dy[r + 3 * a + 1] = r2 * wx - r0 * wz;
+                dy[r + 3 * a + 2] = r0 * wy - r1 * wx;
+            }
+        }
+        if *factored {
+            for i in 0..dof {
+                let row = &m[i * dof..(i + 1) * dof];
+                dy[v + i] = row.iter().zip(b.iter()).map(|(a, x)| a * x).sum();
+            }
+            return;
+        }
+        for i in 0..dof * dof {
             m[i] = self.tape.output(slots, i);
         }
-        for i in 0..n {
-            b[i] = self.tape.output(slots, n * n + i);
-        }
-        dy[..n].copy_from_slice(&y[n..2 * n]);
-        if cholesky_solve(m, b, n) > 0.0 {
-            dy[n..2 * n].copy_from_slice(b);
+        if cholesky_solve(m, b, dof) > 0.0 {
+            dy[v..v + dof].copy_from_slice(b);
         } else {
-            dy[n..2 * n].fill(f64::NAN);
+            dy[v..v + dof].fill(f64::NAN);
         }
     }
 }
@@ -490,24 +682,40 @@ impl Scene for ModelScene {
     ) -> Result<RunSummary, SceneError> {
         let y0 = self.initial_state(params);
         if let Some(i) = y0.iter().position(|x| !x.is_finite()) {
-            let n = self.model.layout.n;
+            let layout = self.model.layout;
+            let (n, v) = (layout.n, layout.velocities_at());
+            let orientation = |k: usize| &self.model.orientations[k].name;
             let what = if i < n {
                 format!("the initial value of `{}`", self.model.coordinates[i])
+            } else if i < v {
+                format!(
+                    "the initial orientation of frame `{}`",
+                    orientation((i - n) / 9)
+                )
+            } else if i < v + n {
+                format!("the initial rate of `{}`", self.model.coordinates[i - v])
             } else {
-                format!("the initial rate of `{}`", self.model.coordinates[i - n])
+                format!(
+                    "the initial angular velocity of frame `{}`",
+                    orientation((i - v - n) / 3)
+                )
             };
             return Err(SceneError::ModelRefused {
                 model: self.info.name.to_string(),
                 message: format!("{what} is {} at these parameters", y0[i]),
             });
         }
-        match self.model.layout.n {
-            1 => self.run::<2>(params, plan, &y0, recorder),
-            2 => self.run::<4>(params, plan, &y0, recorder),
-            3 => self.run::<6>(params, plan, &y0, recorder),
-            4 => self.run::<8>(params, plan, &y0, recorder),
-            5 => self.run::<10>(params, plan, &y0, recorder),
-            _ => self.run::<12>(params, plan, &y0, recorder),
+        // One size per state length (at most 6 coordinates, or 3 beside an orientation).
+        match self.model.layout.state_len() {
+            2 => self.run::<2>(params, plan, &y0, recorder),
+            4 => self.run::<4>(params, plan, &y0, recorder),
+            6 => self.run::<6>(params, plan, &y0, recorder),
+            8 => self.run::<8>(params, plan, &y0, recorder),
+            10 => self.run::<10>(params, plan, &y0, recorder),
+            12 => self.run::<12>(params, plan, &y0, recorder),
+            14 => self.run::<14>(params, plan, &y0, recorder),
+            16 => self.run::<16>(params, plan, &y0, recorder),
+            _ => self.run::<18>(params, plan, &y0, recorder),
         }
     }
 }

@@ -189,7 +189,8 @@ impl<'g> Inference<'g> {
     /// Inference over `graph` with inputs numbered as the model's `layout`: time in seconds,
     /// the parameters' units as declared, coordinates as their initial values (or, for a
     /// coordinate whose initial value is a bare number, its initial rate times a time), rates
-    /// as their coordinates per second.
+    /// as their coordinates per second, an SO(3) orientation's matrix dimensionless and its
+    /// angular velocity per second.
     #[must_use]
     pub fn new(
         graph: &'g Graph,
@@ -219,6 +220,15 @@ impl<'g> Inference<'g> {
             };
             me.inputs[layout.q(i) as usize] = q;
             me.inputs[layout.qd(i) as usize] = q.map(|d| d.div(Dim::TIME));
+        }
+        // An orientation on SO(3): a dimensionless rotation matrix turning at a rate.
+        for f in 0..layout.so3 {
+            for a in 0..3 {
+                for b in 0..3 {
+                    me.inputs[layout.rot(f, a, b) as usize] = Some(Dim::ONE);
+                }
+                me.inputs[layout.omega(f, a) as usize] = Some(Dim::RATE);
+            }
         }
         // The coordinates' dimensions are now known: forget what was inferred without them.
         me.memo.fill(None);
@@ -368,7 +378,7 @@ pub fn expected(key: &str) -> Option<(Dim, &'static str)> {
         ("points" | "bodies", "mass") => (Dim::MASS, "a mass"),
         ("bodies", "inertia") => (Dim::INERTIA, "a moment of inertia"),
         ("frames", "angles" | "rotations") => (Dim::ONE, "an angle"),
-        ("rotating_frame", "omega") => (Dim::RATE, "a rate of turn"),
+        ("rotating_frame" | "frames", "omega") => (Dim::RATE, "a rate of turn"),
         _ => return None,
     })
 }

@@ -725,7 +725,7 @@ pub trait Scene: Sync {
 /// The unit quaternion of a rotation matrix with its sign chosen continuous along a run (`q` and
 /// `−q` are the same rotation): the first has `w ≥ 0`, each later one the sign closer to the
 /// previous one, so that CSV columns and plots do not jump.
-pub(crate) fn continuous_quaternion(
+pub fn continuous_quaternion(
     rotation: &nalgebra::Matrix3<f64>,
     previous: &mut Option<nalgebra::Quaternion<f64>>,
 ) -> nalgebra::Quaternion<f64> {

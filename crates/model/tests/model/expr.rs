@@ -172,7 +172,7 @@ fn euler_chains_match_the_kinematics_crate() {
     let rates = Vector3::new(0.3, -0.8, 1.9);
     for conv in EulerConvention::all() {
         let mut g = Graph::default();
-        let layout = Layout { n: 3 };
+        let layout = Layout { n: 3, so3: 0 };
         let a: Vec<Id> = (0..3).map(|i| g.input(layout.q(i))).collect();
         let axes = conv.sequence.axes().map(|x| x.index());
         let links = match conv.kind {

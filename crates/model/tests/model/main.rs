@@ -6,6 +6,7 @@ mod expr;
 mod fuzz;
 mod models;
 mod native;
+mod so3;
 mod support;
 mod taylor;
 mod twins;

@@ -251,7 +251,9 @@ fn taylor_fixed<const S: usize>(
     for (k, v) in set {
         params.set(k, *v).unwrap();
     }
-    let system = scene.taylor(&params);
+    let system = scene
+        .taylor(&params)
+        .expect("a model without orientations on SO(3)");
     let mut y = SVector::<f64, S>::from_column_slice(&scene.initial_state(&params));
     let mut stepper = Taylor::fixed(p).stepper(&y);
     Driver::new(0.0, t_end)
