@@ -800,45 +800,9 @@ impl Model {
                     .links
                     .clone(),
             };
-            match (&f.angles, &f.rotations) {
-                (Some(angles), None) => {
-                    let convention = match &f.euler {
-                        None => EulerConvention::ARTICLE,
-                        Some(e) => e.get_ref().parse::<EulerConvention>().map_err(|_| {
-                            src.invalid(&e.span(), &format!("{key}.euler"), format!("unknown convention {:?}; write an axis sequence such as \"zyz\", \"zxz\", \"xyz\", optionally \"extrinsic-xyz\"", e.get_ref()))
-                        })?,
-                    };
-                    let a = src.vector(&format!("{key}.angles"), angles, &mut graph, &scope)?;
-                    let axes = convention.sequence.axes().map(|x| x.index());
-                    let own = match convention.kind {
-                        RotationKind::Intrinsic => {
-                            [(axes[0], a[0]), (axes[1], a[1]), (axes[2], a[2])]
-                        }
-                        RotationKind::Extrinsic => {
-                            [(axes[2], a[2]), (axes[1], a[1]), (axes[0], a[0])]
-                        }
-                    };
-                    links.extend(own);
-                }
-                (None, Some(rotations)) => {
-                    if let Some(e) = &f.euler {
-                        return Err(src.invalid(&e.span(), &format!("{key}.euler"), "names the convention of `angles`; a frame given by `rotations` takes none"));
-                    }
-                    for (k, r) in rotations.get_ref().iter().enumerate() {
-                        let rk = format!("{key}.rotations[{}]", k + 1);
-                        let (ax, angle) = r.get_ref();
-                        let ax = axis(ax).ok_or_else(|| {
-                            src.invalid(
-                                &r.span(),
-                                &rk,
-                                format!("unknown axis {ax:?}; write \"x\", \"y\" or \"z\""),
-                            )
-                        })?;
-                        let angle = src.expr(&rk, angle, &mut graph, &scope)?;
-                        links.push((ax, angle));
-                    }
-                }
-                _ => {
+            match read_links(&src, &key, f, &mut graph, &scope)? {
+                Some(own) => links.extend(own),
+                None => {
                     return Err(src.invalid(&name.span(), &key, "needs `angles` (three Euler angles, with `euler` naming the convention, ZYZ by default) or `rotations` ([[axis, angle], ...]), one of them"));
                 }
             }
@@ -1196,6 +1160,58 @@ impl Model {
     }
 }
 
+/// A frame's rotations about fixed axes in product order, from `angles` (three Euler angles of
+/// the convention `euler`, ZYZ by default) or `rotations` (`[[axis, angle], ...]`); `None`
+/// when the frame gives neither or both.
+fn read_links(
+    src: &Src<'_>,
+    key: &str,
+    f: &RawFrame,
+    graph: &mut Graph,
+    scope: &Names,
+) -> Result<Option<Vec<(usize, Id)>>, ModelFileError> {
+    match (&f.angles, &f.rotations) {
+        (Some(angles), None) => {
+            let convention = match &f.euler {
+                None => EulerConvention::ARTICLE,
+                Some(e) => e.get_ref().parse::<EulerConvention>().map_err(|_| {
+                    src.invalid(&e.span(), &format!("{key}.euler"), format!("unknown convention {:?}; write an axis sequence such as \"zyz\", \"zxz\", \"xyz\", optionally \"extrinsic-xyz\"", e.get_ref()))
+                })?,
+            };
+            let a = src.vector(&format!("{key}.angles"), angles, graph, scope)?;
+            let axes = convention.sequence.axes().map(|x| x.index());
+            Ok(Some(match convention.kind {
+                RotationKind::Intrinsic => vec![(axes[0], a[0]), (axes[1], a[1]), (axes[2], a[2])],
+                RotationKind::Extrinsic => vec![(axes[2], a[2]), (axes[1], a[1]), (axes[0], a[0])],
+            }))
+        }
+        (None, Some(rotations)) => {
+            if let Some(e) = &f.euler {
+                return Err(src.invalid(
+                    &e.span(),
+                    &format!("{key}.euler"),
+                    "names the convention of `angles`; a frame given by `rotations` takes none",
+                ));
+            }
+            let mut links = Vec::new();
+            for (k, r) in rotations.get_ref().iter().enumerate() {
+                let rk = format!("{key}.rotations[{}]", k + 1);
+                let (ax, angle) = r.get_ref();
+                let ax = axis(ax).ok_or_else(|| {
+                    src.invalid(
+                        &r.span(),
+                        &rk,
+                        format!("unknown axis {ax:?}; write \"x\", \"y\" or \"z\""),
+                    )
+                })?;
+                links.push((ax, src.expr(&rk, angle, graph, scope)?));
+            }
+            Ok(Some(links))
+        }
+        _ => Ok(None),
+    }
+}
+
 /// A frame integrated on SO(3): its initial orientation from `angles` (of `euler`) or
 /// `rotations`, and its initial body angular velocity `omega`, both of the parameters; returns
 /// its rotation and angular velocity, which are state inputs.
@@ -1217,45 +1233,14 @@ fn so3_frame(
             "an orientation on SO(3) turns in the model frame; leave `parent` out",
         ));
     }
-    let mut links = Vec::new();
-    match (&f.angles, &f.rotations) {
-        (Some(angles), None) => {
-            let convention = match &f.euler {
-                None => EulerConvention::ARTICLE,
-                Some(e) => e.get_ref().parse::<EulerConvention>().map_err(|_| {
-                    src.invalid(&e.span(), &format!("{key}.euler"), format!("unknown convention {:?}; write an axis sequence such as \"zyz\", \"zxz\", \"xyz\", optionally \"extrinsic-xyz\"", e.get_ref()))
-                })?,
-            };
-            let a = src.vector(&format!("{key}.angles"), angles, graph, param_scope)?;
-            let axes = convention.sequence.axes().map(|x| x.index());
-            links.extend(match convention.kind {
-                RotationKind::Intrinsic => [(axes[0], a[0]), (axes[1], a[1]), (axes[2], a[2])],
-                RotationKind::Extrinsic => [(axes[2], a[2]), (axes[1], a[1]), (axes[0], a[0])],
-            });
-        }
-        (None, Some(rotations)) => {
-            for (k, r) in rotations.get_ref().iter().enumerate() {
-                let rk = format!("{key}.rotations[{}]", k + 1);
-                let (ax, angle) = r.get_ref();
-                let ax = axis(ax).ok_or_else(|| {
-                    src.invalid(
-                        &r.span(),
-                        &rk,
-                        format!("unknown axis {ax:?}; write \"x\", \"y\" or \"z\""),
-                    )
-                })?;
-                links.push((ax, src.expr(&rk, angle, graph, param_scope)?));
-            }
-        }
-        (None, None) => {}
-        (Some(a), Some(_)) => {
-            return Err(src.invalid(
-                &a.span(),
-                key,
-                "gives its initial orientation by `angles` or by `rotations`, not both",
-            ));
-        }
+    if let (Some(a), Some(_)) = (&f.angles, &f.rotations) {
+        return Err(src.invalid(
+            &a.span(),
+            key,
+            "gives its initial orientation by `angles` or by `rotations`, not both",
+        ));
     }
+    let links = read_links(src, key, f, graph, param_scope)?.unwrap_or_default();
     let omega = match &f.omega {
         Some(w) => src.vector(&format!("{key}.omega"), w, graph, param_scope)?,
         None => {
