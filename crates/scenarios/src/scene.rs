@@ -16,6 +16,7 @@ use tumble_integrators::{
 use crate::dispatch;
 use crate::error::SceneError;
 use crate::params::{ParamSpec, Params};
+pub use crate::recommendation::Recommendation;
 
 /// What a scene documents.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -578,36 +579,6 @@ pub enum Guide {
 /// The largest angle (rad) a fixed step may turn at the initial state's fastest rate
 /// ([`Scene::initial_rate`]): about 12 steps a turn.
 pub const MAX_ANGLE_PER_STEP: f64 = 0.5;
-
-/// Which methods to use for one purpose on a scene, from measurements of its work–precision
-/// (`tumble work-precision SCENE`, and `--long` for long horizons) at its default parameters.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
-pub struct Recommendation {
-    /// What the run is for: a band of final-time error over the measured horizon, or a long
-    /// horizon where the energy must not drift.
-    pub purpose: &'static str,
-    /// The methods, fastest first (registry names the scene runs).
-    pub integrators: &'static [&'static str],
-    /// The finest final-time error of the band at the default parameters and horizon, which
-    /// the first method reaches (`None`: a purpose that is not an error band, such as a long
-    /// horizon). The test `recommended_methods_reach_their_error_bands` holds it to that.
-    pub finest_error: Option<f64>,
-    /// The measurement behind it: times or errors of the methods and of DOP853 beside them.
-    pub evidence: &'static str,
-}
-
-/// `purpose: method, method (evidence)`, the line `tumble scenes` prints.
-impl std::fmt::Display for Recommendation {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(
-            f,
-            "{}: {} ({})",
-            self.purpose,
-            self.integrators.join(", "),
-            self.evidence
-        )
-    }
-}
 
 /// A smaller model of a scene's motion, for runs that need only some of its columns (a sweep
 /// whose every metric reads them): fewer numbers integrated for the same motion.

@@ -59,6 +59,7 @@ use tumble_kinematics::EulerConvention;
 use crate::error::{ModelError, SceneError, finite, non_negative, positive};
 use crate::lagrangian::Lagrangian;
 use crate::params::{Domain, ParamSpec, Params};
+use crate::recommendation::Measure;
 use crate::scene::{
     Guide, Recommendation, Recorder, RunPlan, RunSummary, Scene, SceneInfo, run_hamiltonian,
     run_vector,
@@ -569,27 +570,29 @@ pub static DRIVEN_HOOP: SceneInfo = SceneInfo {
     rate_names: &[],
 };
 
-/// Which method for what, measured by `tumble work-precision driven-hoop` (and `--long`) at the
-/// default parameters on a 2-core machine with nothing else running.
+/// Which method for what on `driven-hoop`; the measurements behind it are data
+/// (`crate::recommendation`), written by `tumble work-precision driven-hoop --recommend`.
 static DRIVEN_HOOP_RECOMMENDED: [Recommendation; 3] = [
     Recommendation {
         purpose: "error 1e-4 … 1e-8 at t = 10 s",
-        finest_error: Some(1e-8),
         integrators: &["vern9", "vern8"],
-        evidence: "to 1e-8 in 35 and 39 µs, dop853 41 µs",
+        measure: Measure::ToError(1e-8),
+        compared_with: &["dop853"],
+        reason: "",
     },
     Recommendation {
         purpose: "error 1e-8 … 1e-12",
-        finest_error: Some(1e-12),
         integrators: &["vern9"],
-        evidence: "to 1e-12 in 62 µs, vern8 79 µs, dop853 111 µs",
+        measure: Measure::ToError(1e-12),
+        compared_with: &["vern8", "dop853"],
+        reason: "",
     },
     Recommendation {
         purpose: "Jacobi integral over 10^6 steps and more",
-        finest_error: None,
         integrators: &["kahan-li8", "sofroniou-spaletta10"],
-        evidence: "2^20 steps of 0.01 s on the separable model: 1.5e-16 and 3.0e-16, \
-                   bounded; vern9 at tol 1e-13 drifts as t^0.97 (2.0e-13)",
+        measure: Measure::LongRun,
+        compared_with: &["vern9"],
+        reason: "symplectic compositions of Verlet on the separable model: the Jacobi integral stays bounded",
     },
 ];
 
@@ -703,28 +706,29 @@ pub static SPINNING_HOOP: SceneInfo = SceneInfo {
     rate_names: &[],
 };
 
-/// Which method for what, measured by `tumble work-precision spinning-hoop` (and `--long`) at
-/// the default parameters on a 2-core machine with nothing else running.
+/// Which method for what on `spinning-hoop`; the measurements behind it are data
+/// (`crate::recommendation`), written by `tumble work-precision spinning-hoop --recommend`.
 static SPINNING_HOOP_RECOMMENDED: [Recommendation; 3] = [
     Recommendation {
         purpose: "error 1e-4 … 1e-8 at t = 10 s",
-        finest_error: Some(1e-8),
         integrators: &["vern9", "vern8"],
-        evidence: "to 1e-8 in 177 and 187 µs, dop853 241 µs",
+        measure: Measure::ToError(1e-8),
+        compared_with: &["dop853"],
+        reason: "",
     },
     Recommendation {
         purpose: "error 1e-8 … 1e-12",
-        finest_error: Some(1e-12),
         integrators: &["kahan-li8", "gauss10"],
-        evidence: "to 1e-12 in 662 and 845 µs, in a second run 671 and 650 µs, gauss12 969 \
-                   and 739 µs; the explicit pairs level off between 1e-12 and 1e-11",
+        measure: Measure::ToError(1e-12),
+        compared_with: &["gauss12", "vern9", "dop853"],
+        reason: "",
     },
     Recommendation {
         purpose: "energy over 10^6 steps and more",
-        finest_error: None,
         integrators: &["kahan-li8", "gauss10"],
-        evidence: "2^20 steps of 0.01 s: 7.8e-15 (kahan-li8 on the Routh-reduced model, L_z \
-                   exact) and 3.5e-15, bounded; vern9 at tol 1e-13 drifts as t^0.98 (9.8e-12)",
+        measure: Measure::LongRun,
+        compared_with: &["vern9"],
+        reason: "symplectic; kahan-li8 integrates the Routh-reduced model, on which L_z is exact",
     },
 ];
 
