@@ -27,6 +27,12 @@
 //! (`coriolis-drop` ends at an event, which needs dense output) DOP853 at `1e-13` is the
 //! reference and RK4 at the small step the cross-check. [`Reference::agreement`] says how far
 //! the two agree, which bounds what the ladder can resolve.
+//!
+//! # Submodules
+//!
+//! Long runs (the energy error over a million steps and more, cost matching) are in `long`;
+//! the measurements behind a scene's recommendations ([`measure_recommendations`]) in
+//! `recommend`. Their items are re-exported here.
 
 mod long;
 mod recommend;

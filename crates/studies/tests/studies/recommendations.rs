@@ -170,3 +170,26 @@ fn embedded_measurements_cover_every_recommendation() {
     assert_eq!(&again, all);
     assert_eq!(Measurements::parse(MEASUREMENTS_TOML).as_ref(), Ok(all));
 }
+
+/// A recommendation's reason is physics, never a measurement: no time, no error figure, no run
+/// described in it (those are the embedded data's).
+#[test]
+fn reasons_state_no_measurements() {
+    for scene in builtin() {
+        for r in scene.recommendations() {
+            let reason = r.reason;
+            let figure = reason.as_bytes().windows(3).any(|w| {
+                w[0].is_ascii_digit() && w[1] == b'e' && (w[2] == b'-' || w[2].is_ascii_digit())
+            });
+            assert!(
+                !figure
+                    && !reason.contains("µs")
+                    && !reason.contains(" ms")
+                    && !reason.contains("run"),
+                "{}: {} — {reason}",
+                scene.info().name,
+                r.purpose
+            );
+        }
+    }
+}
