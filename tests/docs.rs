@@ -183,6 +183,55 @@ fn text(value: &Value) -> String {
     }
 }
 
+/// The measurements of a recommendation (`to_error` or `long_run` in `tumble scenes --json`):
+/// each method's time to the band's finest error, or its largest relative energy error over
+/// the long run.
+fn measured(entry: &Value) -> String {
+    let time = |s: f64| {
+        if s < 1e-3 {
+            format!("{:.1} µs", 1e6 * s)
+        } else if s < 1.0 {
+            format!("{:.2} ms", 1e3 * s)
+        } else {
+            format!("{s:.3} s")
+        }
+    };
+    let methods = |v: &Value| v["method"].as_array().cloned().unwrap_or_default();
+    if let Some(band) = entry.get("to_error") {
+        let items: Vec<String> = methods(band)
+            .iter()
+            .map(|m| match m["seconds"].as_f64() {
+                Some(s) => format!("{} {}", text(&m["integrator"]), time(s)),
+                None => format!(
+                    "{} not reached (best {:.1e})",
+                    text(&m["integrator"]),
+                    m["best_error"].as_f64().unwrap_or(f64::NAN)
+                ),
+            })
+            .collect();
+        return format!(
+            "to {:.0e}: {}",
+            band["target_error"].as_f64().unwrap_or(f64::NAN),
+            items.join(", ")
+        );
+    }
+    if let Some(long) = entry.get("long_run") {
+        let items: Vec<String> = methods(long)
+            .iter()
+            .map(|m| match m["max_energy_rel_err"].as_f64() {
+                Some(e) => format!(
+                    "{} ({}) {e:.1e}",
+                    text(&m["integrator"]),
+                    text(&m["control"])
+                ),
+                None => format!("{} failed: {}", text(&m["integrator"]), text(&m["failed"])),
+            })
+            .collect();
+        return format!("{} steps: {}", text(&long["steps"]), items.join(", "));
+    }
+    String::new()
+}
+
 /// The integrator reference, from `tumble integrators --json`.
 fn integrators_reference() -> String {
     let list: Value = serde_json::from_str(&tumble(&["integrators", "--json"])).expect("JSON");
@@ -303,14 +352,35 @@ fn scenes_reference() -> String {
         if let Some(recommended) = scene["recommended"].as_array()
             && !recommended.is_empty()
         {
-            page.push_str("\n| recommended for | methods | measured |\n|---|---|---|\n");
+            page.push_str(
+                "\n| recommended for | methods | why | compared with | measured |\n\
+                 |---|---|---|---|---|\n",
+            );
             for entry in recommended {
                 let _ = writeln!(
                     page,
-                    "| {} | {} | {} |",
+                    "| {} | {} | {} | {} | {} |",
                     cell(&text(&entry["purpose"])),
                     names(&entry["integrators"]),
-                    cell(&text(&entry["evidence"])),
+                    cell(&text(&entry["reason"])),
+                    names(&entry["compared_with"]),
+                    cell(&measured(entry)),
+                );
+            }
+            let by = &scene["measured_by"];
+            if !by.is_null() {
+                let _ = writeln!(
+                    page,
+                    "\nMeasured by `{}` (tumble {}, {}) on {}: {}, {} cores, load average {}; \
+                     errors against {}.",
+                    text(&by["command"]),
+                    text(&by["tumble_version"]),
+                    text(&by["git_commit"]),
+                    text(&by["date"]),
+                    text(&by["cpu"]),
+                    text(&by["cores"]),
+                    text(&by["load_average"]),
+                    text(&scene["measured_against"]),
                 );
             }
         }

@@ -29,8 +29,11 @@ use std::time::{Duration, Instant};
 
 use criterion::{BenchmarkGroup, Criterion, Throughput, measurement::WallTime};
 use nalgebra::{Rotation3, SVector, Vector3};
+use tumble_integrators::registry::{self, Stepping, build, build::ReceiveOde};
 use tumble_integrators::rigid::{FreeRigidBody, RigidBodyState};
-use tumble_integrators::{AdaptiveStepper, ExplicitRungeKutta, Ode, Stepper, Tolerances};
+use tumble_integrators::{
+    AdaptiveStepper, DenseOutput, ExplicitRungeKutta, Ode, Stepper, Tolerances,
+};
 use tumble_scenarios::Scene;
 use tumble_scenarios::scenes::free_hoop::{self, FlatFreeHoop, FreeHoopScene};
 use tumble_scenarios::scenes::rigid::{self, FlatRigidBody};
@@ -44,17 +47,15 @@ const SAMPLES: usize = 21;
 /// A sample repeats its run until it lasts this long (s).
 const MIN_SAMPLE_SECONDS: f64 = 0.005;
 
-/// The methods measured: name, and whether it has an embedded error estimate.
-pub const METHODS: [(&str, bool); 8] = [
-    ("rk4", false),
-    ("dp5", true),
-    ("dop853", true),
-    ("tsit5", true),
-    ("vern6", true),
-    ("vern7", true),
-    ("vern8", true),
-    ("vern9", true),
-];
+/// The methods measured: every explicit Runge–Kutta method of the registry, and whether it
+/// has an embedded error estimate.
+pub fn methods() -> Vec<(&'static str, bool)> {
+    registry::methods()
+        .iter()
+        .filter(|m| matches!(m.stepping, Stepping::Explicit(_)))
+        .map(|m| (m.name, m.properties.adaptive))
+        .collect()
+}
 
 /// `problem` counting its evaluations.
 struct Counting<'a, P> {
@@ -69,48 +70,74 @@ impl<const N: usize, P: Ode<SVector<f64, N>>> Ode<SVector<f64, N>> for Counting<
     }
 }
 
-/// `STEPS` steps of `method` from `y0`; `adaptive`: through `attempt` + `accept`.
-fn steps<const S: usize, const N: usize, P: Ode<SVector<f64, N>>>(
-    method: ExplicitRungeKutta<S>,
+/// Runs `STEPS` steps of the stepper the registry builds from `y0`; `adaptive`: through
+/// `attempt` + `accept`.
+struct Steps<'a, P, const N: usize> {
+    problem: &'a P,
+    y0: &'a SVector<f64, N>,
+    adaptive: bool,
+}
+
+impl<P: Ode<SVector<f64, N>>, const N: usize> ReceiveOde<P, SVector<f64, N>> for Steps<'_, P, N> {
+    type Output = SVector<f64, N>;
+    fn adaptive<St: AdaptiveStepper<P, State = SVector<f64, N>> + DenseOutput<P>>(
+        self,
+        mut st: St,
+    ) -> Self::Output {
+        let mut y = *self.y0;
+        let tol = Tolerances::new(1.0, 1.0).expect("tolerances");
+        let mut t = 0.0;
+        for k in 0..STEPS {
+            if self.adaptive {
+                let err = st.attempt(self.problem, t, &y, H, &tol).expect("attempt");
+                black_box(err);
+                st.accept(self.problem, t, &mut y, H);
+            } else {
+                st.step(self.problem, t, &mut y, H).expect("step");
+            }
+            t = f64::from(k + 1) * H;
+        }
+        y
+    }
+    fn interpolating<St: DenseOutput<P, State = SVector<f64, N>>>(self, st: St) -> Self::Output {
+        fixed_steps(st, self.problem, self.y0)
+    }
+    fn plain<St: Stepper<P, State = SVector<f64, N>> + Clone>(self, st: St) -> Self::Output {
+        fixed_steps(st, self.problem, self.y0)
+    }
+}
+
+/// `STEPS` fixed steps of `st` from `y0`.
+fn fixed_steps<const N: usize, P, St: Stepper<P, State = SVector<f64, N>>>(
+    mut st: St,
     problem: &P,
     y0: &SVector<f64, N>,
-    adaptive: bool,
 ) -> SVector<f64, N> {
     let mut y = *y0;
-    let mut st = method.stepper(&y);
-    let tol = Tolerances::new(1.0, 1.0).expect("tolerances");
-    let mut t = 0.0;
     for k in 0..STEPS {
-        if adaptive {
-            let err = st.attempt(problem, t, &y, H, &tol).expect("attempt");
-            black_box(err);
-            st.accept(problem, t, &mut y, H);
-        } else {
-            st.step(problem, t, &mut y, H).expect("step");
-        }
-        t = f64::from(k + 1) * H;
+        st.step(problem, f64::from(k) * H, &mut y, H).expect("step");
     }
     y
 }
 
-/// Runs `STEPS` steps of the method called `name` (see [`METHODS`]).
+/// Runs `STEPS` steps of the registry's method `name` (see [`methods`]).
 fn run_named<const N: usize, P: Ode<SVector<f64, N>>>(
     name: &str,
     problem: &P,
     y0: &SVector<f64, N>,
     adaptive: bool,
 ) -> SVector<f64, N> {
-    match name {
-        "rk4" => steps(ExplicitRungeKutta::rk4(), problem, y0, false),
-        "dp5" => steps(ExplicitRungeKutta::dp5(), problem, y0, adaptive),
-        "dop853" => steps(ExplicitRungeKutta::dop853(), problem, y0, adaptive),
-        "tsit5" => steps(ExplicitRungeKutta::tsit5(), problem, y0, adaptive),
-        "vern6" => steps(ExplicitRungeKutta::vern6(), problem, y0, adaptive),
-        "vern7" => steps(ExplicitRungeKutta::vern7(), problem, y0, adaptive),
-        "vern8" => steps(ExplicitRungeKutta::vern8(), problem, y0, adaptive),
-        "vern9" => steps(ExplicitRungeKutta::vern9(), problem, y0, adaptive),
-        other => panic!("unknown method {other}"),
-    }
+    let method = registry::find(name).expect("a registry method");
+    build::ode(
+        method,
+        y0,
+        Steps {
+            problem,
+            y0,
+            adaptive,
+        },
+    )
+    .expect("an explicit method")
 }
 
 /// The `STEPS + 1` states of an RK4 run of `STEPS` steps from `y0` (the states the timed
@@ -213,7 +240,7 @@ fn scene<const N: usize, P: Ode<SVector<f64, N>>>(
             run: Box::new(|| rhs_chained(problem, &states)),
         },
     ];
-    for (name, embedded) in METHODS {
+    for (name, embedded) in methods() {
         for adaptive in [false, true] {
             if adaptive && !embedded {
                 continue;

@@ -5,6 +5,7 @@ use std::process::{Command, Output};
 
 use serde_json::Value;
 use tumble_scenarios::Domain;
+use tumble_scenarios::recommendation::measurements;
 use tumble_scenarios::scenes::builtin;
 
 use crate::support::tumble_in;
@@ -61,10 +62,30 @@ fn json_lists_every_builtin_scene_with_its_parameters_columns_and_defaults() {
         assert!(!entry["conserved"].as_array().unwrap().is_empty());
         let recommended = entry["recommended"].as_array().unwrap();
         assert_eq!(recommended.len(), scene.recommendations().len());
+        let measured = measurements().unwrap().scene(info.name).unwrap();
+        assert_eq!(
+            entry["measured_by"],
+            serde_json::from_str::<Value>(&serde_json::to_string(&measured.provenance).unwrap())
+                .unwrap()
+        );
+        assert_eq!(entry["measured_against"], measured.reference.as_str());
         for (r, rec) in recommended.iter().zip(scene.recommendations()) {
             assert_eq!(r["purpose"], rec.purpose);
             assert_eq!(r["integrators"], serde_json::json!(rec.integrators));
-            assert_eq!(r["evidence"], rec.evidence);
+            assert_eq!(r["compared_with"], serde_json::json!(rec.compared_with));
+            assert_eq!(r["reason"], rec.reason);
+            assert_eq!(r["finest_error"].as_f64(), rec.finest_error());
+            // Through JSON text, as the listing's numbers come (serde_json reads a decimal to
+            // within an ulp, not always to the nearest double).
+            let json = |v: String| serde_json::from_str::<Value>(&v).unwrap();
+            let band = measured
+                .band(rec.purpose)
+                .map(|b| json(serde_json::to_string(b).unwrap()));
+            let long = measured
+                .long_run(rec.purpose)
+                .map(|l| json(serde_json::to_string(l).unwrap()));
+            assert_eq!(r.get("to_error"), band.as_ref());
+            assert_eq!(r.get("long_run"), long.as_ref());
         }
     }
 }
@@ -82,9 +103,36 @@ fn text_listing_recommends_methods_by_purpose_for_every_builtin_scene() {
             scene.info().name
         );
         for r in recs {
-            let line = r.to_string();
+            let line = format!("{}: {}", r.purpose, r.integrators.join(", "));
             assert!(text.contains(&line), "missing: {line}");
         }
+    }
+}
+
+/// The listing's times are data: every time it prints stands on a line of measurements (`to
+/// 1e-8: …`), and every scene's block ends its recommendations with how they were measured
+/// (the command, the date, the machine).
+#[test]
+fn text_listing_prints_times_only_as_measurements_with_their_provenance() {
+    let out = tumble(&["scenes"]);
+    assert!(out.status.success());
+    let text = String::from_utf8(out.stdout).unwrap();
+    let mut timed = 0;
+    for line in text.lines() {
+        if line.contains(" µs") || line.contains(" ms") {
+            assert!(line.trim_start().starts_with("to "), "timing prose: {line}");
+            timed += 1;
+        }
+    }
+    assert!(timed >= 10, "{timed} lines of times");
+    for scene in builtin() {
+        let name = scene.info().name;
+        assert!(
+            text.contains(&format!(
+                "  measured     by `tumble work-precision {name} --recommend"
+            )),
+            "{name}: no provenance line"
+        );
     }
 }
 

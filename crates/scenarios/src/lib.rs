@@ -59,6 +59,7 @@ pub mod drawing;
 pub mod error;
 pub mod lagrangian;
 pub mod params;
+pub mod recommendation;
 pub mod resolution;
 pub mod scene;
 pub mod scene_file;
@@ -68,6 +69,7 @@ pub mod toml_file;
 pub use error::{ModelError, SceneError};
 pub use lagrangian::{EulerLagrange, Lagrangian, LagrangianOde};
 pub use params::{Domain, ParamSpec, Params};
+pub use recommendation::Measure;
 pub use resolution::StepResolution;
 pub use scene::{
     DenseRows, Guide, Observe, Recommendation, Recorder, RunOptions, RunPlan, RunSummary, Scene,

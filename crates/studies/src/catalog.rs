@@ -7,6 +7,9 @@
 
 use serde::Serialize;
 use tumble_integrators::registry::{MethodInfo, methods};
+use tumble_scenarios::recommendation::{
+    Band, LongRuns, Provenance, SceneMeasurements, measurements,
+};
 use tumble_scenarios::scenes::builtin;
 use tumble_scenarios::{Recommendation, RunOptions, Scene, SceneError, StepControl};
 
@@ -95,8 +98,56 @@ pub struct Entry {
     pub default_tol: Option<f64>,
     /// Default horizon (s).
     pub default_t_end: f64,
-    /// Which methods to use, by purpose, from the scene's measured work–precision.
-    pub recommended: &'static [Recommendation],
+    /// Which methods to use, by purpose, with the measurements behind them.
+    pub recommended: Vec<Recommended>,
+    /// How the measurements were made (command, version, date, machine), if they were.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub measured_by: Option<&'static Provenance>,
+    /// The reference the measured errors are taken against.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub measured_against: Option<&'static str>,
+}
+
+/// A scene's recommendation for one purpose with its measurements (the embedded
+/// `tumble_scenarios::recommendation::measurements`).
+#[derive(Debug, Clone, Serialize)]
+pub struct Recommended {
+    /// What the run is for.
+    pub purpose: &'static str,
+    /// The methods, fastest first.
+    pub integrators: &'static [&'static str],
+    /// The band's finest error, which the first method reaches (an error band).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub finest_error: Option<f64>,
+    /// Methods measured beside them for comparison.
+    pub compared_with: &'static [&'static str],
+    /// Why, where it is a property of the method and the model (empty: the measurements say it).
+    pub reason: &'static str,
+    /// Each method's time to the band's finest error.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub to_error: Option<&'static Band>,
+    /// Each method's energy error over a long run.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub long_run: Option<&'static LongRuns>,
+}
+
+/// `scene`'s recommendations joined with its embedded measurements, and those measurements.
+fn recommended(scene: &dyn Scene) -> (Vec<Recommended>, Option<&'static SceneMeasurements>) {
+    let measured = measurements().ok().and_then(|m| m.scene(scene.info().name));
+    let list = scene
+        .recommendations()
+        .iter()
+        .map(|r: &Recommendation| Recommended {
+            purpose: r.purpose,
+            integrators: r.integrators,
+            finest_error: r.finest_error(),
+            compared_with: r.compared_with,
+            reason: r.reason,
+            to_error: measured.and_then(|m| m.band(r.purpose)),
+            long_run: measured.and_then(|m| m.long_run(r.purpose)),
+        })
+        .collect();
+    (list, measured)
 }
 
 /// The catalogue entry of a scene.
@@ -106,6 +157,7 @@ pub struct Entry {
 pub fn entry(scene: &dyn Scene) -> Result<Entry, SceneError> {
     let info = scene.info();
     let resolved = RunOptions::default().resolve(info)?;
+    let (recommended, measured) = recommended(scene);
     let (default_dt, default_tol) = match resolved.step {
         StepControl::Fixed(h) => (Some(h), None),
         StepControl::Tolerance(tol) => (None, Some(tol)),
@@ -136,6 +188,8 @@ pub fn entry(scene: &dyn Scene) -> Result<Entry, SceneError> {
         default_dt,
         default_tol,
         default_t_end: resolved.t_end,
-        recommended: scene.recommendations(),
+        recommended,
+        measured_by: measured.map(|m| &m.provenance),
+        measured_against: measured.map(|m| m.reference.as_str()),
     })
 }

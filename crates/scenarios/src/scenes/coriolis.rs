@@ -24,6 +24,7 @@ use tumble_kinematics::frames::{EARTH_ANGULAR_SPEED, RotatingFrame, earth_rotati
 use crate::error::SceneError;
 use crate::lagrangian::Lagrangian;
 use crate::params::{Domain, ParamSpec, Params};
+use crate::recommendation::Measure;
 use crate::scene::{Recommendation, Recorder, RunPlan, RunSummary, Scene, SceneInfo, run_vector};
 
 /// The drop in the rotating frame.
@@ -137,14 +138,14 @@ pub static CORIOLIS_DROP: SceneInfo = SceneInfo {
     rate_names: &[],
 };
 
-/// Which method for what, measured by `tumble work-precision coriolis-drop` at the default
-/// parameters on a 2-core machine with nothing else running.
+/// Which method for what on `coriolis-drop`; the measurements behind it are data
+/// (`crate::recommendation`), written by `tumble work-precision coriolis-drop --recommend`.
 static CORIOLIS_DROP_RECOMMENDED: [Recommendation; 1] = [Recommendation {
     purpose: "any accuracy",
-    finest_error: Some(1e-12),
     integrators: &["rk4", "gauss8"],
-    evidence: "the fall is nearly a polynomial in t: to 1e-12 at t = 60 s in 2.8 and 3.4 µs, \
-               dop853 7.8 µs",
+    measure: Measure::ToError(1e-12),
+    compared_with: &["dop853"],
+    reason: "the fall is nearly a polynomial in t",
 }];
 
 /// Runs `coriolis-drop` until the body lands (or the horizon).

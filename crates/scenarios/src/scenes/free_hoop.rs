@@ -50,6 +50,7 @@ use super::hoop::{HoopParams, critical_spin, critical_spin_guide, hoop_rate, til
 use crate::dispatch;
 use crate::error::SceneError;
 use crate::params::{Domain, ParamSpec, Params};
+use crate::recommendation::Measure;
 use crate::scene::{
     Guide, Recommendation, Recorder, RowObserver, RunPlan, RunSummary, Scene, SceneInfo,
     continuous_quaternion, run_vector,
@@ -393,28 +394,29 @@ pub static FREE_HOOP: SceneInfo = SceneInfo {
     rate_names: &["omega_x", "omega_y", "omega_z", "alpha_dot"],
 };
 
-/// Which method for what, measured by `tumble work-precision free-hoop` (and `--long`) at the
-/// default parameters on a 2-core machine with nothing else running.
+/// Which method for what on `free-hoop`; the measurements behind it are data
+/// (`crate::recommendation`), written by `tumble work-precision free-hoop --recommend`.
 static FREE_HOOP_RECOMMENDED: [Recommendation; 3] = [
     Recommendation {
         purpose: "error 1e-4 … 1e-8 at t = 10 s",
-        finest_error: Some(1e-8),
         integrators: &["vern8"],
-        evidence: "to 1e-8 in 99 µs, dop853 108 µs",
+        measure: Measure::ToError(1e-8),
+        compared_with: &["dop853"],
+        reason: "",
     },
     Recommendation {
         purpose: "error 1e-8 … 1e-12",
-        finest_error: Some(1e-12),
         integrators: &["vern9", "vern8"],
-        evidence: "to 1e-12 in 262 and 281 µs, dop853 402 µs",
+        measure: Measure::ToError(1e-12),
+        compared_with: &["dop853"],
+        reason: "",
     },
     Recommendation {
         purpose: "energy over 10^6 steps and more",
-        finest_error: None,
         integrators: &["gauss8", "lgvi6", "lie-gauss6"],
-        evidence: "2^20 steps of 0.01 s: gauss8 at round-off, lgvi6 6.2e-12 bounded with L_z \
-                   exact, lie-gauss6 1.7e-15 at 2.5x lgvi6's cost; vern9 at tol 1e-13 drifts as \
-                   t^0.99",
+        measure: Measure::LongRun,
+        compared_with: &["vern9"],
+        reason: "symplectic; lgvi6 and lie-gauss6 are variational on the rotation group and keep L_z exact",
     },
 ];
 

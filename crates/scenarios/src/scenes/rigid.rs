@@ -42,6 +42,7 @@ use tumble_kinematics::so3::{exp, hat};
 use crate::dispatch;
 use crate::error::SceneError;
 use crate::params::{Domain, ParamSpec, Params};
+use crate::recommendation::Measure;
 use crate::scene::{
     Recommendation, Recorder, RowObserver, RunPlan, RunSummary, Scene, SceneInfo,
     continuous_quaternion, run_vector,
@@ -272,35 +273,36 @@ pub static FREE_BODY: SceneInfo = SceneInfo {
     rate_names: &["omega_x", "omega_y", "omega_z"],
 };
 
-/// Which method for what, measured by `tumble work-precision free-body` (and `--long`) at the
-/// default parameters on a 2-core machine with nothing else running.
+/// Which method for what on `free-body`; the measurements behind it are data
+/// (`crate::recommendation`), written by `tumble work-precision free-body --recommend`.
 static FREE_BODY_RECOMMENDED: [Recommendation; 4] = [
     Recommendation {
         purpose: "any accuracy",
-        finest_error: Some(1e-12),
         integrators: &["split-exact2"],
-        evidence: "the torque-free flow is exact in this splitting: 3.8 µs to t = 20 s, \
-                   1.7e-14 at the default step",
+        measure: Measure::ToError(1e-12),
+        compared_with: &[],
+        reason: "the torque-free flow is exact in this splitting",
     },
     Recommendation {
         purpose: "a general method, error 1e-4 … 1e-8 at t = 20 s",
-        finest_error: Some(1e-8),
         integrators: &["vern8"],
-        evidence: "to 1e-8 in 12.5 µs, dop853 17.0 µs",
+        measure: Measure::ToError(1e-8),
+        compared_with: &["dop853"],
+        reason: "",
     },
     Recommendation {
         purpose: "a general method, error 1e-8 … 1e-12",
-        finest_error: Some(1e-12),
         integrators: &["vern8", "vern9"],
-        evidence: "to 1e-12 in 26 and 27 µs (an earlier run: vern9 31, vern8 35 µs), dop853 \
-                   41 µs",
+        measure: Measure::ToError(1e-12),
+        compared_with: &["dop853"],
+        reason: "",
     },
     Recommendation {
         purpose: "energy over 10^6 steps and more",
-        finest_error: None,
         integrators: &["lgvi", "split6"],
-        evidence: "2^20 steps of 0.01 s: energy and R^T R at round-off, spatial momentum exact \
-                   (lgvi); vern9 at tol 1e-13 drifts as t^0.94",
+        measure: Measure::LongRun,
+        compared_with: &["vern9"],
+        reason: "symplectic; lgvi keeps the spatial momentum exact",
     },
 ];
 
@@ -468,32 +470,29 @@ pub static DZHANIBEKOV: SceneInfo = SceneInfo {
     rate_names: &["omega_x", "omega_y", "omega_z"],
 };
 
-/// Which method for what, measured by `tumble work-precision dzhanibekov` (and `--long`) at the
-/// default parameters on a 2-core machine with nothing else running. The flips amplify errors:
-/// no general method gets below about 1e-11 at t = 10 s.
+/// Which method for what on `dzhanibekov`; the measurements behind it are data
+/// (`crate::recommendation`), written by `tumble work-precision dzhanibekov --recommend`.
 static DZHANIBEKOV_RECOMMENDED: [Recommendation; 3] = [
     Recommendation {
         purpose: "any accuracy",
-        finest_error: None,
         integrators: &["exact"],
-        evidence: "the closed-form solution in Jacobi elliptic functions, evaluated at each \
-                   output time; split-exact2 is exact in a single step, but its round-off \
-                   grows as the step shrinks, amplified by the flips",
+        measure: Measure::Nothing,
+        compared_with: &[],
+        reason: "the closed-form solution in Jacobi elliptic functions, evaluated at each output time; split-exact2 is exact in a single step, but its round-off grows as the step shrinks, amplified by the flips",
     },
     Recommendation {
         purpose: "a general method, error 1e-4 … 1e-10 at t = 10 s",
-        finest_error: Some(1e-10),
         integrators: &["vern7", "dop853"],
-        evidence: "to 1e-10 in 718 µs and 1.01 ms, vern9 1.16 ms; vern8 reaches 1e-8 in \
-                   287 µs but not 1e-10",
+        measure: Measure::ToError(1e-10),
+        compared_with: &["vern9", "vern8"],
+        reason: "",
     },
     Recommendation {
         purpose: "energy over 10^6 steps and more",
-        finest_error: None,
         integrators: &["dmv", "gauss2", "vern9"],
-        evidence: "2^20 steps of 0.001 s: dmv and gauss2 9.1e-16 bounded, with the momentum \
-                   map exact; vern9 at tol 1e-13 stays at 1.5e-15 here, at a sixth of \
-                   gauss2's cost",
+        measure: Measure::LongRun,
+        compared_with: &[],
+        reason: "dmv and gauss2 are symplectic and keep the momentum map exact",
     },
 ];
 
@@ -638,27 +637,29 @@ pub static HEAVY_TOP: SceneInfo = SceneInfo {
     rate_names: &["omega_x", "omega_y", "omega_z"],
 };
 
-/// Which method for what, measured by `tumble work-precision heavy-top` (and `--long`) at the
-/// default parameters on a 2-core machine with nothing else running.
+/// Which method for what on `heavy-top`; the measurements behind it are data
+/// (`crate::recommendation`), written by `tumble work-precision heavy-top --recommend`.
 static HEAVY_TOP_RECOMMENDED: [Recommendation; 3] = [
     Recommendation {
         purpose: "error 1e-4 … 1e-8 at t = 10 s",
-        finest_error: Some(1e-8),
         integrators: &["split-exact8", "vern8"],
-        evidence: "to 1e-8 in 319 µs (kicks around the exact free flow: only gravity's part \
-                   has an error), vern8 829 µs, dop853 1.07 ms",
+        measure: Measure::ToError(1e-8),
+        compared_with: &["dop853"],
+        reason: "kicks around the exact free flow: only gravity's part has an error",
     },
     Recommendation {
         purpose: "error 1e-8 … 1e-12",
-        finest_error: Some(1e-12),
         integrators: &["split-exact8", "vern9"],
-        evidence: "to 1e-12 in 983 µs, vern9 2.19 ms, dop853 3.42 ms",
+        measure: Measure::ToError(1e-12),
+        compared_with: &["dop853"],
+        reason: "kicks around the exact free flow: only gravity's part has an error",
     },
     Recommendation {
         purpose: "energy over 10^6 steps and more",
-        finest_error: None,
         integrators: &["split6", "lgvi6"],
-        evidence: "2^20 steps of 0.001 s: energy at round-off (1.8e-16), L·e3 exact (lgvi6)",
+        measure: Measure::LongRun,
+        compared_with: &["vern9"],
+        reason: "symplectic; lgvi6 keeps L·e3 exact",
     },
 ];
 

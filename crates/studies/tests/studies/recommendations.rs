@@ -37,7 +37,7 @@ fn recommended_methods_reach_their_error_bands() {
         let t_end = info.default_t_end;
         let reference = reference(*scene, &params, t_end).unwrap();
         for r in scene.recommendations() {
-            let Some(target) = r.finest_error else {
+            let Some(target) = r.finest_error() else {
                 continue;
             };
             let name = r.integrators[0];
@@ -82,4 +82,114 @@ fn recommended_methods_reach_their_error_bands() {
         }
     }
     assert!(checked >= 12, "only {checked} bands checked");
+}
+
+/// The embedded measurements (`tumble_scenarios::recommendation::measurements`, written by
+/// `tumble work-precision SCENE --recommend`) hold, for every recommendation of every built-in
+/// scene, the methods it names and compares in that order: each error band at its finest
+/// error, which its first method reached; each long run with every method's energy error or
+/// its failure; and nothing for what the recommendations do not measure. The file reads back
+/// as it was written.
+#[test]
+fn embedded_measurements_cover_every_recommendation() {
+    use tumble_scenarios::Measure;
+    use tumble_scenarios::recommendation::{MEASUREMENTS_TOML, Measurements, measurements};
+
+    let all = measurements().unwrap();
+    let names: Vec<&str> = builtin().iter().map(|s| s.info().name).collect();
+    for m in &all.scenes {
+        assert!(names.contains(&m.name.as_str()), "unknown scene {}", m.name);
+        let p = &m.provenance;
+        assert!(
+            p.command
+                .contains(&format!("work-precision {} --recommend", m.name))
+        );
+        assert!(p.cores > 0 && !p.cpu.is_empty() && !p.date.is_empty());
+    }
+    for scene in builtin() {
+        let info = scene.info();
+        let recs = scene.recommendations();
+        if recs.is_empty() {
+            continue;
+        }
+        let m = all
+            .scene(info.name)
+            .unwrap_or_else(|| panic!("{}: not measured", info.name));
+        assert_eq!(m.t_end, info.default_t_end, "{}", info.name);
+        let (mut bands, mut longs) = (0, 0);
+        for r in recs {
+            let measured: Vec<&str> = r.measured_methods().collect();
+            match r.measure {
+                Measure::ToError(target) => {
+                    let band = m
+                        .band(r.purpose)
+                        .unwrap_or_else(|| panic!("{}: {} not measured", info.name, r.purpose));
+                    assert_eq!(band.target_error, target);
+                    let got: Vec<&str> =
+                        band.methods.iter().map(|x| x.integrator.as_str()).collect();
+                    assert_eq!(got, measured, "{}: {}", info.name, r.purpose);
+                    let first = &band.methods[0];
+                    assert!(
+                        first.seconds.is_some_and(|s| s > 0.0) && first.best_error <= target,
+                        "{}: {} — {first:?}",
+                        info.name,
+                        r.purpose
+                    );
+                    bands += 1;
+                }
+                Measure::LongRun => {
+                    let long = m
+                        .long_run(r.purpose)
+                        .unwrap_or_else(|| panic!("{}: {} not measured", info.name, r.purpose));
+                    assert_eq!(long.dt, info.default_step);
+                    let got: Vec<&str> =
+                        long.methods.iter().map(|x| x.integrator.as_str()).collect();
+                    assert_eq!(got, measured, "{}: {}", info.name, r.purpose);
+                    for run in &long.methods {
+                        assert!(
+                            run.max_energy_rel_err.is_some() != run.failed.is_some(),
+                            "{}: {run:?}",
+                            info.name
+                        );
+                    }
+                    longs += 1;
+                }
+                Measure::Nothing => {
+                    assert!(m.band(r.purpose).is_none() && m.long_run(r.purpose).is_none());
+                }
+            }
+        }
+        assert_eq!(
+            (bands, longs),
+            (m.bands.len(), m.long_runs.len()),
+            "{}",
+            info.name
+        );
+    }
+    let again = Measurements::parse(&all.to_toml().unwrap()).unwrap();
+    assert_eq!(&again, all);
+    assert_eq!(Measurements::parse(MEASUREMENTS_TOML).as_ref(), Ok(all));
+}
+
+/// A recommendation's reason is physics, never a measurement: no time, no error figure, no run
+/// described in it (those are the embedded data's).
+#[test]
+fn reasons_state_no_measurements() {
+    for scene in builtin() {
+        for r in scene.recommendations() {
+            let reason = r.reason;
+            let figure = reason.as_bytes().windows(3).any(|w| {
+                w[0].is_ascii_digit() && w[1] == b'e' && (w[2] == b'-' || w[2].is_ascii_digit())
+            });
+            assert!(
+                !figure
+                    && !reason.contains("µs")
+                    && !reason.contains(" ms")
+                    && !reason.contains("run"),
+                "{}: {} — {reason}",
+                scene.info().name,
+                r.purpose
+            );
+        }
+    }
 }

@@ -19,19 +19,23 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use anyhow::{Context, Result, bail};
-use tumble_integrators::Flow;
 use tumble_output::table::{Column, Format, Table, Values};
 use tumble_scenarios::scene::CancelFlag;
-use tumble_scenarios::{Params, Recorder, RunPlan, RunSummary, Scene, SceneInfo, StepControl};
-use tumble_studies::error_estimate::{self, ErrorEstimate, Tap, Trust, WrittenRows};
+use tumble_scenarios::{Params, RunPlan, RunSummary, Scene, SceneInfo, StepControl};
+use tumble_studies::error_estimate::{self, Tap, Trust, WrittenRows};
 use tumble_studies::simulation::{self, Naming, ParamOverride, RunRequest, failure_message};
 pub(crate) use tumble_studies::simulation::{LoadedScene, number};
+
+mod record;
+mod rows;
+
+use record::{Estimated, SimulationRecord};
+use rows::CsvRecorder;
 
 use super::args::{parse_set, refuse_repeated_keys};
 use crate::manifest;
 use crate::output;
 use crate::plot;
-use crate::provenance::Provenance;
 use crate::signals;
 
 /// Flags of `tumble simulate`.
@@ -318,280 +322,10 @@ fn parse_times(raw: &str) -> Result<Vec<f64>> {
         .collect()
 }
 
-/// A writer that counts the bytes it passes on.
-struct Counting<W> {
-    inner: W,
-    count: u64,
-}
-
-impl<W: Write> Write for Counting<W> {
-    fn write(&mut self, buf: &[u8]) -> io::Result<usize> {
-        let n = self.inner.write(buf)?;
-        self.count += n as u64;
-        Ok(n)
-    }
-
-    fn flush(&mut self) -> io::Result<()> {
-        self.inner.flush()
-    }
-}
-
-/// Writes rows as CSV (unless the output is Parquet) and keeps them, column by column, when a
-/// plot or a Parquet file needs them.
-struct CsvRecorder<W: Write> {
-    csv: Option<csv::Writer<Counting<W>>>,
-    /// The header, written with the first row (a run that fails before its first row, such as
-    /// a model refused at t = 0, leaves a stream output empty).
-    header: Option<Vec<String>>,
-    keep: Option<Vec<Vec<f64>>>,
-    error: Option<csv::Error>,
-    /// Stdout was closed by the reader (`| head`): stop quietly.
-    closed: bool,
-    /// `--max-output` in bytes: the run stops once the output would pass it (a fixed-step run
-    /// is refused before it starts when its estimate does; an adaptive run's rows are counted
-    /// as they are written).
-    limit: f64,
-    /// Bytes of output so far: written CSV, or about 22 a value for kept rows alone.
-    bytes: f64,
-    /// The time of the row that passed the limit.
-    over_at: Option<f64>,
-}
-
-impl<W: Write> CsvRecorder<W> {
-    fn new(out: Option<W>, columns: &[String], keep: bool, limit: f64) -> Result<Self> {
-        Ok(CsvRecorder {
-            header: out.is_some().then(|| columns.to_vec()),
-            csv: out.map(|inner| csv::Writer::from_writer(Counting { inner, count: 0 })),
-            keep: keep.then(|| vec![Vec::new(); columns.len()]),
-            error: None,
-            closed: false,
-            limit,
-            bytes: 0.0,
-            over_at: None,
-        })
-    }
-
-    fn fail(&mut self, e: csv::Error) -> Flow {
-        if matches!(e.kind(), csv::ErrorKind::Io(io) if io.kind() == io::ErrorKind::BrokenPipe) {
-            self.closed = true;
-        } else {
-            self.error = Some(e);
-        }
-        Flow::Stop
-    }
-
-    /// Flushes; the kept columns and whether the reader closed the output early, or the first
-    /// write error.
-    fn finish(mut self) -> Result<(Option<Vec<Vec<f64>>>, bool)> {
-        if let Some(e) = self.error.take() {
-            return Err(e.into());
-        }
-        // A run that wrote no row still gives a CSV with its header.
-        if let (Some(csv), Some(header)) = (&mut self.csv, self.header.take()) {
-            csv.write_record(&header)?;
-        }
-        if !self.closed
-            && let Some(csv) = &mut self.csv
-            && let Err(e) = csv.flush()
-        {
-            if e.kind() == io::ErrorKind::BrokenPipe {
-                self.closed = true;
-            } else {
-                return Err(e.into());
-            }
-        }
-        Ok((self.keep, self.closed))
-    }
-}
-
-impl<W: Write> Recorder for CsvRecorder<W> {
-    fn row(&mut self, values: &[f64]) -> Flow {
-        // The output's size: the CSV bytes written so far (the writer's buffer aside), or 22
-        // bytes a value when the rows are only kept.
-        self.bytes = match &self.csv {
-            Some(csv) => csv.get_ref().count as f64,
-            None => self.bytes + 22.0 * values.len() as f64,
-        };
-        if self.bytes > self.limit {
-            self.over_at = values.first().copied();
-            return Flow::Stop;
-        }
-        if let Some(csv) = &mut self.csv {
-            let written = match self.header.take() {
-                Some(header) => csv.write_record(&header),
-                None => Ok(()),
-            };
-            if let Err(e) = written.and_then(|()| csv.serialize(values)) {
-                return self.fail(e);
-            }
-        }
-        if let Some(keep) = &mut self.keep {
-            for (column, &v) in keep.iter_mut().zip(values) {
-                column.push(v);
-            }
-        }
-        Flow::Continue
-    }
-}
-
 pub(crate) fn step_words(step: StepControl) -> String {
     match step {
         StepControl::Fixed(h) => format!("fixed step dt = {h} s"),
         StepControl::Tolerance(tol) => format!("tolerance {}", number(tol)),
-    }
-}
-
-/// `FILE.csv.json`: how a simulation's CSV was made.
-#[derive(serde::Serialize)]
-struct SimulationRecord<'a> {
-    provenance: Provenance,
-    scene: &'static str,
-    origin: &'a str,
-    /// The frame of the orientation and angular-velocity columns.
-    frame: String,
-    parameters: std::collections::BTreeMap<&'static str, f64>,
-    integrator: &'static str,
-    dt: Option<f64>,
-    tol: Option<f64>,
-    t_end: f64,
-    every: u64,
-    at: Option<&'a [f64]>,
-    csv: String,
-    columns: Vec<String>,
-    rows: u64,
-    steps: u64,
-    evaluations: u64,
-    reached_t: f64,
-    max_energy_rel_err: f64,
-    energy_warning: bool,
-    /// The error estimate (`--check on`), or why there is none.
-    error_estimate: EstimateRecord,
-    wall_time_s: f64,
-}
-
-/// The error estimate as the provenance file records it.
-#[derive(serde::Serialize)]
-struct EstimateRecord {
-    /// `estimated`, `off` (`--check off`) or `failed`.
-    status: &'static str,
-    /// Why there is no estimate (`failed`).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    reason: Option<String>,
-    #[serde(flatten, skip_serializing_if = "Option::is_none")]
-    estimate: Option<EstimateFigures>,
-}
-
-/// The figures of an error estimate (tumble_studies::error_estimate).
-#[derive(serde::Serialize)]
-struct EstimateFigures {
-    /// Estimated error of the final state (work–precision norm).
-    #[serde(rename = "final")]
-    final_error: f64,
-    /// Largest estimated error over the compared rows.
-    max: f64,
-    /// Time of that row.
-    max_t: f64,
-    rows_compared: u64,
-    /// `trustworthy`, `round-off`, `not-trustworthy` or `unchecked`.
-    trust: &'static str,
-    /// Why, in words.
-    trust_reason: String,
-    companion: String,
-    check: Option<String>,
-    expected_ratio: f64,
-    observed_ratio: Option<f64>,
-    factor: f64,
-    round_off: f64,
-    companion_steps: u64,
-    companion_evaluations: u64,
-}
-
-impl EstimateRecord {
-    fn of(estimate: &Estimated) -> Self {
-        match estimate {
-            Estimated::Off => EstimateRecord {
-                status: "off",
-                reason: None,
-                estimate: None,
-            },
-            Estimated::Failed(reason) => EstimateRecord {
-                status: "failed",
-                reason: Some(reason.clone()),
-                estimate: None,
-            },
-            Estimated::Done(e) => EstimateRecord {
-                status: "estimated",
-                reason: None,
-                estimate: Some(EstimateFigures {
-                    final_error: e.final_error,
-                    max: e.max_error,
-                    max_t: e.max_error_t,
-                    rows_compared: e.rows_compared,
-                    trust: e.trust.key(),
-                    trust_reason: e.trust_words(),
-                    companion: error_estimate::words(e.companion),
-                    check: e.check.map(error_estimate::words),
-                    expected_ratio: e.expected_ratio,
-                    observed_ratio: e.observed_ratio,
-                    factor: e.factor,
-                    round_off: e.round_off,
-                    companion_steps: e.steps,
-                    companion_evaluations: e.evaluations,
-                }),
-            },
-        }
-    }
-}
-
-/// The error estimate of a run, or why there is none.
-enum Estimated {
-    /// `--check off`.
-    Off,
-    /// The companion could not run, or the run did not finish (why).
-    Failed(String),
-    /// The estimate.
-    Done(ErrorEstimate),
-}
-
-impl<'a> SimulationRecord<'a> {
-    fn new(
-        setup: &'a Setup,
-        summary: &RunSummary,
-        wall: f64,
-        csv: Option<&Path>,
-        energy_warn: f64,
-        estimate: &Estimated,
-    ) -> Self {
-        let plan = &setup.plan;
-        let (dt, tol) = match plan.step {
-            StepControl::Fixed(h) => (Some(h), None),
-            StepControl::Tolerance(t) => (None, Some(t)),
-        };
-        SimulationRecord {
-            provenance: Provenance::now(1),
-            scene: setup.scene.info().name,
-            origin: &setup.origin,
-            frame: setup.frame.clone().unwrap_or_else(|| {
-                "the scene's body frame (docs/design.md, section 3)".to_string()
-            }),
-            parameters: setup.params.iter().collect(),
-            integrator: plan.integrator(),
-            dt,
-            tol,
-            t_end: plan.t_end,
-            every: plan.every,
-            at: plan.times.as_deref(),
-            csv: csv.map_or_else(String::new, |p| p.display().to_string()),
-            columns: setup.scene.info().columns(),
-            rows: summary.rows,
-            steps: summary.steps,
-            evaluations: summary.evaluations,
-            reached_t: summary.t,
-            max_energy_rel_err: summary.max_energy_rel_err,
-            energy_warning: !(summary.max_energy_rel_err <= energy_warn),
-            error_estimate: EstimateRecord::of(estimate),
-            wall_time_s: wall,
-        }
     }
 }
 

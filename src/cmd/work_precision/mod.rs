@@ -4,7 +4,10 @@
 //! The numerics live in `tumble_studies::work_precision` (ladders, reference, error norm,
 //! long runs); this module validates the flags, prints progress and a summary, and writes
 //! `work-precision.csv`, `manifest.json` and the plots (`work-precision.png`/`.svg`, or
-//! `long.csv`, `long.png`/`.svg`) into the output folder.
+//! `long.csv`, `long.png`/`.svg`) into the output folder. `--recommend FILE` measures what
+//! the scene's recommendations rest on instead ([`recommend`]).
+
+mod recommend;
 
 use std::fmt::Write as _;
 use std::path::PathBuf;
@@ -13,7 +16,7 @@ use anyhow::{Result, bail};
 use tumble_integrators::registry;
 use tumble_scenarios::{Params, Scene, StepControl};
 use tumble_studies::work_precision::{
-    self, Config, Ladder, LongRun, fitted_slope, long_run_methods,
+    self, Config, Ladder, LongRun, control_words, cost_at, fitted_slope, long_run_methods,
 };
 
 use super::simulate::{LoadedScene, SceneArgs, load_scene, number};
@@ -63,6 +66,19 @@ pub struct Args {
     /// with no step within 1.5× of that cost is left out, with the reason.
     #[arg(long = "long-tol", value_name = "TOL", requires = "long")]
     pub long_tol: Option<f64>,
+    /// Measure what the scene's recommendations (`tumble scenes`) rest on, for a built-in
+    /// scene at its default parameters: the time each recommended and compared method takes
+    /// to each error band's finest error (its ladder, retimed in turns), and its relative
+    /// energy error over `--long-steps` steps for each long horizon; then write them, with the
+    /// command, version, date and machine, into FILE in place of the scene's entry (the other
+    /// scenes' entries are kept). `crates/scenarios/data/recommendations.toml` is the file the
+    /// binary embeds at build time.
+    #[arg(
+        long,
+        value_name = "FILE",
+        conflicts_with_all = ["long", "long_tol", "integrators", "t_end", "output"]
+    )]
+    pub recommend: Option<PathBuf>,
     /// Size, font size, resolution and SVG text of the figures.
     #[command(flatten)]
     pub figure: super::args::FigureArgs,
@@ -106,6 +122,9 @@ pub fn run(args: &Args) -> Result<()> {
             number(args.max_seconds)
         );
     }
+    if let Some(file) = &args.recommend {
+        return recommend::run(scene, &origin, &params, args, file);
+    }
     let stem = if origin == "builtin" {
         info.name.to_string()
     } else {
@@ -146,63 +165,12 @@ pub fn run(args: &Args) -> Result<()> {
     output::check_folder(&dir, &folder_files("work-precision"))?;
     let _lock = output::lock_folder(&dir, args.break_lock)?;
 
-    // The reference first, before any line of the study: a reference the budget cannot afford
-    // makes the error the first line on stderr.
-    let reference =
-        work_precision::reference_within(scene, &params, t_end, Some(config.max_reference_seconds));
-    stop_if_interrupted(&dir)?;
-    let reference = reference.map_err(|e| match e {
-        tumble_scenarios::SceneError::Integration(tumble_integrators::Error::TimeLimit {
-            t,
-            seconds,
-            ..
-        }) => anyhow::anyhow!(
-            "{}: the reference run over [0, {t_end}] s was cut after {seconds} s of wall time at \
-             t = {t} s ({REFERENCE_FACTOR} × --max-seconds); shorten --t-end or raise \
-             --max-seconds",
-            info.name
-        ),
-        e => anyhow::Error::new(e).context(format!("{}: the reference run failed", info.name)),
-    })?;
-    eprintln!(
-        "work-precision  {} ({origin}), t in [0, {t_end}] s",
-        info.name
-    );
-    eprintln!("reference       {}", reference.method);
-    eprintln!(
-        "cross-check     {}: agrees to {:.1e}",
-        reference.check, reference.agreement
-    );
-    if !reference.self_check.is_empty() {
-        eprintln!(
-            "self-check      {}: agrees to {:.1e}",
-            reference.self_check, reference.self_agreement
-        );
-    }
+    let reference = study_reference(scene, &origin, &params, &config, &dir)?;
     let mut ladders = Vec::with_capacity(integrators.len());
     for name in &integrators {
-        let mut on_rung = |r: &work_precision::Rung| {
-            eprintln!(
-                "  {:<13} {:<20} error {:9.2e}  {:>10} evaluations  {}",
-                name,
-                control_words(r.control),
-                r.error,
-                r.evaluations,
-                seconds(r.seconds)
-            );
-        };
-        let ladder = work_precision::ladder(
-            scene,
-            &params,
-            name,
-            &reference.state,
-            &config,
-            &mut on_rung,
-        );
-        stop_if_interrupted(&dir)?;
-        let ladder = ladder?;
-        eprintln!("  {name:<13} stopped: {}", ladder.stop);
-        ladders.push(ladder);
+        ladders.push(study_ladder(
+            scene, &params, name, &reference, &config, &dir,
+        )?);
     }
     eprintln!(
         "timing          every rung again, the methods taking turns ({} rounds)",
@@ -266,9 +234,85 @@ pub fn run(args: &Args) -> Result<()> {
     Ok(())
 }
 
+/// The study's reference over `[0, config.t_end]`, before any line of the study (a reference
+/// the budget cannot afford makes the error the first line on stderr), with what it is and how
+/// far its checks agree on stderr. `dest` is where the results go (for the message of a run
+/// stopped by a signal).
+pub(super) fn study_reference(
+    scene: &dyn Scene,
+    origin: &str,
+    params: &Params,
+    config: &Config,
+    dest: &std::path::Path,
+) -> Result<work_precision::Reference> {
+    let (info, t_end) = (scene.info(), config.t_end);
+    let reference =
+        work_precision::reference_within(scene, params, t_end, Some(config.max_reference_seconds));
+    stop_if_interrupted(dest)?;
+    let reference = reference.map_err(|e| match e {
+        tumble_scenarios::SceneError::Integration(tumble_integrators::Error::TimeLimit {
+            t,
+            seconds,
+            ..
+        }) => anyhow::anyhow!(
+            "{}: the reference run over [0, {t_end}] s was cut after {seconds} s of wall time at \
+             t = {t} s ({REFERENCE_FACTOR} × --max-seconds); shorten --t-end or raise \
+             --max-seconds",
+            info.name
+        ),
+        e => anyhow::Error::new(e).context(format!("{}: the reference run failed", info.name)),
+    })?;
+    eprintln!(
+        "work-precision  {} ({origin}), t in [0, {t_end}] s",
+        info.name
+    );
+    eprintln!("reference       {}", reference.method);
+    eprintln!(
+        "cross-check     {}: agrees to {:.1e}",
+        reference.check, reference.agreement
+    );
+    if !reference.self_check.is_empty() {
+        eprintln!(
+            "self-check      {}: agrees to {:.1e}",
+            reference.self_check, reference.self_agreement
+        );
+    }
+    Ok(reference)
+}
+
+/// The ladder of `name`, each rung on stderr as it completes.
+pub(super) fn study_ladder(
+    scene: &dyn Scene,
+    params: &Params,
+    name: &str,
+    reference: &work_precision::Reference,
+    config: &Config,
+    dest: &std::path::Path,
+) -> Result<Ladder> {
+    let mut on_rung = |r: &work_precision::Rung| print_rung(name, r);
+    let ladder =
+        work_precision::ladder(scene, params, name, &reference.state, config, &mut on_rung);
+    stop_if_interrupted(dest)?;
+    let ladder = ladder?;
+    eprintln!("  {name:<13} stopped: {}", ladder.stop);
+    Ok(ladder)
+}
+
+/// A rung on stderr.
+pub(super) fn print_rung(name: &str, r: &work_precision::Rung) {
+    eprintln!(
+        "  {:<13} {:<20} error {:9.2e}  {:>10} evaluations  {}",
+        name,
+        control_words(r.control),
+        r.error,
+        r.evaluations,
+        seconds(r.seconds)
+    );
+}
+
 /// [`signals::Interrupted`] when a signal stopped the work: the study writes its files only
 /// once every run has finished, so nothing of it was written.
-fn stop_if_interrupted(dir: &std::path::Path) -> Result<()> {
+pub(super) fn stop_if_interrupted(dir: &std::path::Path) -> Result<()> {
     match signals::interrupted() {
         Some(code) => Err(signals::Interrupted {
             code,
@@ -292,15 +336,7 @@ fn folder_files(stem: &str) -> Vec<String> {
         .collect()
 }
 
-/// A rung's step or tolerance: `dt = 1.000e-2`, `tol = 1.0e-8`.
-fn control_words(c: StepControl) -> String {
-    match c {
-        StepControl::Fixed(h) => format!("dt = {h:.3e}"),
-        StepControl::Tolerance(t) => format!("tol = {t:.1e}"),
-    }
-}
-
-fn seconds(s: f64) -> String {
+pub(crate) fn seconds(s: f64) -> String {
     if s < 1e-3 {
         format!("{:.1} µs", 1e6 * s)
     } else if s < 1.0 {
@@ -408,27 +444,6 @@ fn summary(ladders: &[Ladder], t_end: f64) -> String {
         }
     }
     out
-}
-
-/// The cost at which the ladder reaches `target`, interpolated log-log between the last rung
-/// above and the first rung at or below it (`None` if it never gets there).
-fn cost_at(
-    rungs: &[work_precision::Rung],
-    target: f64,
-    cost: impl Fn(&work_precision::Rung) -> f64,
-) -> Option<f64> {
-    let i = rungs.iter().position(|r| r.error <= target)?;
-    if i == 0 {
-        return Some(cost(&rungs[0]));
-    }
-    let (a, b) = (&rungs[i - 1], &rungs[i]);
-    let (ea, eb) = (a.error.log10(), b.error.log10());
-    let (ca, cb) = (cost(a).log10(), cost(b).log10());
-    if !(ea > eb) {
-        return Some(cost(b));
-    }
-    let s = (ea - target.log10()) / (ea - eb);
-    Some(10f64.powf(ca + s * (cb - ca)))
 }
 
 /// `--long`: the energy error of the long-run methods and of the adaptive method of highest
