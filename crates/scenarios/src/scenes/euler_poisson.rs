@@ -32,6 +32,13 @@
 //! are normalised, to round-off). With error
 //! control the steps differ (the full model's error estimate also weighs the rest of `R`), and
 //! the two agree to the tolerance (tests in `tumble-studies`' sweep suite).
+//!
+//! # The Taylor method
+//!
+//! The right-hand side is polynomial in `Γ, Π, p_α` and the sines and cosines of `α` and
+//! `2α`, so the Taylor coefficients of the solution follow by hand-written recursions
+//! ([`TaylorHoop`], on this state or on the full model's): the map's method. At a fixed order
+//! and step both models compute the same polynomials for `(Γ, Π, α, p_α)`.
 
 use nalgebra::SVector;
 use tumble_integrators::{Ode, ProblemKind};
