@@ -183,6 +183,8 @@ struct SelfCheckJson {
     largest_change: f64,
     metrics: BTreeMap<String, MetricChangeJson>,
     points: Vec<u64>,
+    /// The screen's looser setting (`dt` or `tol`), when it chose the points.
+    screen: Option<BTreeMap<&'static str, f64>>,
     status_changed: Vec<u64>,
     tol: Option<f64>,
     tolerance: f64,
@@ -218,6 +220,13 @@ impl SelfCheckJson {
                 })
                 .collect(),
             points: c.points.clone(),
+            screen: c.screen.map(|s| {
+                let (dt, tol) = step_fields(s);
+                dt.map(|v| ("dt", v))
+                    .into_iter()
+                    .chain(tol.map(|v| ("tol", v)))
+                    .collect()
+            }),
             status_changed: c.status_changed.clone(),
             tol,
             tolerance,

@@ -412,8 +412,8 @@ fn threads_are_clamped_to_the_points() {
     assert_eq!(manifest(&tmp.path().join("many"))["threads"], 6);
 }
 
-/// Every whole sweep checks itself: chosen points (the grid's corners, its steepest points and
-/// an even spread) again at half the step, the largest change found in the summary and of
+/// Every whole sweep checks itself: chosen points (the grid's corners, its most sensitive
+/// points by a screen and an even spread) again at half the step, the largest change found in the summary and of
 /// each metric in the manifest. A setting
 /// that does not resolve the metrics (Gauss–Legendre 2 at 0.05 s) exits with status 4 and says
 /// so; `--check off` skips the check.

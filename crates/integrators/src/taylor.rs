@@ -310,13 +310,14 @@ impl<Y: crate::VectorState> TaylorStepper<Y> {
         Ok(h)
     }
 
-    /// `y ← Σₖ xₖ hᵏ` from `coeffs` (Horner).
+    /// `y ← Σₖ xₖ hᵏ` from `coeffs` (Horner; a multiply and an add, not `f64::mul_add`,
+    /// a library call on x86-64 without FMA).
     fn sum(coeffs: &[f64], n: usize, p: u32, h: f64, out: &mut [f64]) {
         let p = p as usize;
         for i in 0..n {
             let mut s = coeffs[p * n + i];
             for k in (0..p).rev() {
-                s = s.mul_add(h, coeffs[k * n + i]);
+                s = s * h + coeffs[k * n + i];
             }
             out[i] = s;
         }

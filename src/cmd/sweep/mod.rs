@@ -527,16 +527,9 @@ fn finish(
         Vec::new()
     };
     let tolerance = check.tolerance(def);
-    // The self-check of a whole sweep: spread-out points again at a tighter setting.
+    // The self-check of a whole sweep: chosen points again at a tighter setting.
     let self_check = if shard == Shard::ALL {
-        let points = sweep::check_points_among(def, check.size, &report.rows);
-        if points.is_empty() {
-            None
-        } else {
-            Some(quiet_point_panics(|| {
-                sweep::self_check(def, &report.rows, &points, check.threads)
-            })?)
-        }
+        quiet_point_panics(|| sweep::check_sweep(def, &report.rows, check.size, check.threads))?
     } else {
         None
     };
@@ -638,9 +631,17 @@ fn finish(
                         .collect();
                     format!(" ({name} at point {i}: {})", values.join(", "))
                 });
+            let chosen = c.screen.map_or_else(
+                || "an even spread, the corners".to_string(),
+                |s| {
+                    format!(
+                        "the most sensitive at {}, an even spread, the corners",
+                        plot::sweep::step_words(s)
+                    )
+                },
+            );
             eprintln!(
-                "self-check   largest change {:.1e}{at} over {} check points (the steepest, an \
-                 even spread, the corners) at {}: {}",
+                "self-check   largest change {:.1e}{at} over {} check points ({chosen}) at {}: {}",
                 c.largest(),
                 c.points.len(),
                 plot::sweep::step_words(c.setting),

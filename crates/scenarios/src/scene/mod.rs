@@ -254,10 +254,11 @@ pub struct Reduction {
 
 impl Reduction {
     /// Whether it can run `plan`: the plan integrates the scene as a first-order system in a
-    /// vector space (the Lie-group methods integrate the full rotation).
+    /// vector space, by a method for ODEs or by the Taylor method (the Lie-group methods
+    /// integrate the full rotation).
     #[must_use]
     pub fn runs(&self, plan: &RunPlan) -> bool {
-        plan.kind == ProblemKind::Ode
+        matches!(plan.kind, ProblemKind::Ode | ProblemKind::TaylorSeries)
     }
 }
 

@@ -32,14 +32,24 @@
 //! are normalised, to round-off). With error
 //! control the steps differ (the full model's error estimate also weighs the rest of `R`), and
 //! the two agree to the tolerance (tests in `tumble-studies`' sweep suite).
+//!
+//! # The Taylor method
+//!
+//! The right-hand side is polynomial in `Γ, Π, p_α` and the sines and cosines of `α` and
+//! `2α`, so the Taylor coefficients of the solution follow by hand-written recursions
+//! ([`TaylorHoop`], on this state or on the full model's): the map's method. At a fixed order
+//! and step both models compute the same polynomials for `(Γ, Π, α, p_α)`.
 
 use nalgebra::SVector;
-use tumble_integrators::Ode;
+use tumble_integrators::{Ode, ProblemKind};
 
 use super::free_hoop::FreeHoopScene;
 use crate::error::SceneError;
 use crate::params::Params;
-use crate::scene::{Recorder, Reduction, RunPlan, RunSummary, run_vector};
+use crate::scene::{Recorder, Reduction, RunPlan, RunSummary, run_taylor_vector, run_vector};
+
+mod taylor;
+pub use taylor::TaylorHoop;
 
 /// The state `(Γ_x, Γ_y, Γ_z, Π_x, Π_y, Π_z, α, p_α)`.
 pub type State = SVector<f64, 8>;
@@ -180,6 +190,18 @@ pub fn simulate(
 ) -> Result<RunSummary, SceneError> {
     let (model, s0) = FreeHoopScene::model(params)?;
     let reduced = EulerPoissonHoop::new(&model);
+    if plan.kind == ProblemKind::TaylorSeries {
+        return run_taylor_vector(
+            &TaylorHoop::reduced(reduced),
+            EulerPoissonHoop::reduce(&s0),
+            plan,
+            COLUMNS.len(),
+            ENERGY_COLUMN,
+            |t, y, out| reduced.row(t, y, out),
+            &mut [],
+            recorder,
+        );
+    }
     run_vector(
         &reduced,
         EulerPoissonHoop::reduce(&s0),

@@ -384,7 +384,11 @@ pub static FREE_HOOP: SceneInfo = SceneInfo {
     parameters: &SPECS,
     conserved: &["energy", "Lz", "all of L when g = 0"],
     oracle: "energy and Lz conserved (all of L when g = 0); agrees with the Euler-angle twin away from theta = 0, pi",
-    problems: &[ProblemKind::CoupledRigidBody, ProblemKind::Ode],
+    problems: &[
+        ProblemKind::CoupledRigidBody,
+        ProblemKind::Ode,
+        ProblemKind::TaylorSeries,
+    ],
     needs_dense_output: false,
     default_integrator: "gauss8",
     default_step: 0.01,
@@ -500,6 +504,25 @@ impl Scene for FreeHoopScene {
         let (model, s0) = Self::model(params)?;
         if plan.kind == ProblemKind::CoupledRigidBody {
             return run_coupled(&model, s0, plan, recorder);
+        }
+        if plan.kind == ProblemKind::TaylorSeries {
+            // The Taylor method on the hand-written coefficients (the reduction's, with the
+            // other two rows of R).
+            return crate::scene::run_taylor_vector(
+                &super::euler_poisson::TaylorHoop::full(
+                    super::euler_poisson::EulerPoissonHoop::new(&model),
+                ),
+                flatten(&s0),
+                plan,
+                info.columns().len(),
+                ENERGY_COLUMN,
+                {
+                    let mut previous = None;
+                    move |t, y, out| write_row(&model, t, &unflatten(y), &mut previous, out)
+                },
+                &mut [],
+                recorder,
+            );
         }
         let flat = FlatFreeHoop::new(model)?;
         run_vector(

@@ -2,21 +2,25 @@
 //! setting (half the step, or a tolerance 100 times smaller), and the largest change of each
 //! metric — stated with the sweep's numbers as what it is: the largest change found.
 //!
-//! The errors of a map are not spread evenly: they are largest where the metric is most
-//! sensitive to the point's parameters (on the hoop-tilt map, along its streaks, where a tilt
-//! 50 times larger than the median one's error was measured). So on a grid the subset is
-//! * the corners (every combination of the first and last value of each axis);
-//! * the *steepest* points, half of the budget: every point is scored by its metrics' local
-//!   variation on the grid — per axis, the central difference (one-sided at an edge) plus the
-//!   second difference, each metric relative to its range over the sweep — and the highest
-//!   scores are taken, one per neighbourhood (a point next to one already taken is skipped, so
-//!   that the picks spread over every steep region rather than pile up on one);
-//! * points evenly spaced in index order, the other half.
+//! The errors of a map are heavy-tailed and isolated: on the hoop-tilt map the worst point's
+//! trajectory lingers near an unstable relative equilibrium of the bead (a saddle), which
+//! amplifies its errors about 1000 times more than its grid neighbours', and nothing in the
+//! map's values singles it out (by the local differences of its metrics it ranked 681st of
+//! 23,405). What singles it out is its error: so every point first runs again at a *looser*
+//! setting (twice the step, or a tolerance 1000 times larger — about half the cost of the
+//! sweep for a high-order method), the *screen*, and the points whose metrics change most
+//! there are the ones checked. A trajectory that amplifies errors amplifies them at either
+//! setting: on that map the screen ranks the worst point against a 1e-15 reference first or
+//! second, and the five next worst within its first 20. The subset is
+//! * the corners of a grid (every combination of the first and last value of each axis), the
+//!   first and last points of random samples;
+//! * the most sensitive points by the screen, half of the budget ([`most_sensitive`]);
+//! * points evenly spaced in index order, the rest.
 //!
-//! The budget is `max(8, 1 %)` of the points by default, or as many as asked. Random samples
-//! have no grid neighbours: their check is the first and last point and an even spread. The
-//! subset depends on the definition and the sweep's values alone (bit-for-bit deterministic),
-//! so a resumed, sharded or merged sweep checks the same points.
+//! The budget is `max(8, 1 %)` of the points by default, or as many as asked (a budget of
+//! every point needs no screen). The subset depends on the definition and the sweep's values
+//! alone (bit-for-bit deterministic, whatever the number of threads), so a resumed, sharded or
+//! merged sweep checks the same points.
 
 use std::collections::BTreeMap;
 
@@ -61,6 +65,8 @@ pub struct CheckReport {
     pub points: Vec<u64>,
     /// The tighter setting.
     pub setting: StepControl,
+    /// The screen's looser setting, when the points were chosen by a screen.
+    pub screen: Option<StepControl>,
     /// Per metric.
     pub changes: Vec<MetricChange>,
     /// Check points that failed in one run and not in the other.
@@ -120,41 +126,49 @@ fn budget(size: CheckSize, total: u64) -> u64 {
     .min(total)
 }
 
-/// The points a self-check of `size` re-runs for a sweep with these `rows` (its finished
-/// points, in index order), increasing: on a grid, the corners, the steepest half of the
-/// budget ([`steepest_points`]) and an even spread over the points the sweep has (all of the
-/// grid, or a refined sweep's points); for random samples, the first and last points and an
-/// even spread.
+/// Whether a self-check of `size` on `total` points chooses among them by a screen (it does
+/// unless it checks none or every one of them).
 #[must_use]
-pub fn check_points_among(def: &SweepDefinition, size: CheckSize, rows: &[PointRow]) -> Vec<u64> {
+pub fn screens(size: CheckSize, total: u64) -> bool {
+    let wanted = budget(size, total);
+    wanted > 0 && wanted < total
+}
+
+/// The points a self-check of `size` re-runs for a sweep with these `rows` (its finished
+/// points, in index order), increasing: the corners of a grid (the first and last points of
+/// random samples), the most sensitive half of the budget by the `screened` rows
+/// ([`most_sensitive`]; none when `screened` is empty) and an even spread over the points the
+/// sweep has (all of the grid, or a refined sweep's points).
+#[must_use]
+pub fn check_points_among(
+    def: &SweepDefinition,
+    size: CheckSize,
+    rows: &[PointRow],
+    screened: &[PointRow],
+) -> Vec<u64> {
     let wanted = budget(size, rows.len() as u64);
     if wanted == 0 || rows.is_empty() {
         return Vec::new();
     }
-    let steep = if def.sampling == Sampling::Grid {
-        steepest_points(def, rows, (wanted / 2) as usize)
-    } else {
-        Vec::new()
-    };
-    let rest = CheckSize::Points(wanted - steep.len() as u64);
+    let ranked = most_sensitive(def, rows, screened);
+    let half = (wanted / 2) as usize;
+    let rest = CheckSize::Points(wanted - half.min(ranked.len()) as u64);
     let mut points: std::collections::BTreeSet<u64> = pick(def, rest, rows.len() as u64, |k| {
         rows[usize::try_from(k).unwrap_or(usize::MAX).min(rows.len() - 1)].index
     })
     .into_iter()
     .collect();
-    points.extend(steep);
-    // Top up from the next steepest if the spread hit a steep point.
-    if (points.len() as u64) < wanted {
-        for k in steepest_points(def, rows, wanted as usize) {
-            if points.len() as u64 >= wanted {
-                break;
-            }
-            points.insert(k);
+    // The most sensitive, down the ranking until the budget is met (the spread may have
+    // taken some of them already).
+    for &k in &ranked {
+        if points.len() as u64 >= wanted {
+            break;
         }
+        points.insert(k);
     }
-    // Still short (steep points of one neighbourhood are taken once): the budget is filled
-    // with points spread over the rows, halving the spacing until it is met, so that a budget
-    // as large as the sweep checks every point.
+    // Still short (fewer ranked points than the budget's half): the budget is filled with
+    // points spread over the rows, halving the spacing until it is met, so that a budget as
+    // large as the sweep checks every point.
     let n = rows.len();
     let mut m = 1;
     while (points.len() as u64) < wanted && m <= n {
@@ -175,20 +189,15 @@ pub fn check_points_among(def: &SweepDefinition, size: CheckSize, rows: &[PointR
     points.into_iter().collect()
 }
 
-/// The `n` points of a grid sweep where its metrics vary most (see the module's
-/// documentation), steepest first; fewer when fewer points have a neighbour on the grid.
-/// Only points that finished (`ok`) and metrics of the motion (not `max_energy_rel_err`)
-/// count; a neighbour missing from `rows` (a refined sweep's) is skipped.
+/// The points of a sweep ranked by how much their metrics changed at the screen's looser
+/// setting (`screened`, rows of the same points; see the module's documentation), most
+/// sensitive first; only points that changed. A point whose status changed, or one of whose
+/// metrics is defined in one run only (a threshold crossed in one of them), ranks above every
+/// change of value; a change of value counts relative to the metric's range over the sweep
+/// (metrics of different units compare), the largest over the metrics of the motion (not
+/// `max_energy_rel_err`). Ties go to the lower index, so the ranking is deterministic.
 #[must_use]
-pub fn steepest_points(def: &SweepDefinition, rows: &[PointRow], n: usize) -> Vec<u64> {
-    if def.sampling != Sampling::Grid || n == 0 {
-        return Vec::new();
-    }
-    let counts: Vec<u64> = def.axes.iter().map(|a| a.count().unwrap_or(1)).collect();
-    // Index strides: the last axis is the fastest.
-    let strides: Vec<u64> = (0..counts.len())
-        .map(|j| counts[j + 1..].iter().product())
-        .collect();
+pub fn most_sensitive(def: &SweepDefinition, rows: &[PointRow], screened: &[PointRow]) -> Vec<u64> {
     let metrics: Vec<usize> = def
         .metrics
         .iter()
@@ -196,74 +205,49 @@ pub fn steepest_points(def: &SweepDefinition, rows: &[PointRow], n: usize) -> Ve
         .filter(|(_, m)| **m != Metric::MaxEnergyRelErr)
         .map(|(k, _)| k)
         .collect();
-    let value = |index: u64, k: usize| -> Option<f64> {
-        let i = rows.binary_search_by_key(&index, |r| r.index).ok()?;
-        let row = &rows[i];
-        (row.status == Status::Ok)
-            .then_some(row.metrics[k])
-            .flatten()
-            .filter(|v| v.is_finite())
-    };
-    // Each metric's range over the sweep, to compare metrics of different units.
+    let finite = |row: &PointRow, k: usize| row.metrics[k].filter(|v| v.is_finite());
+    // Each metric's range over the sweep (1 where it has none), to compare metrics of
+    // different units.
     let ranges: Vec<f64> = metrics
         .iter()
         .map(|&k| {
             let (lo, hi) = rows
                 .iter()
-                .filter_map(|r| value(r.index, k))
+                .filter(|r| r.status == Status::Ok)
+                .filter_map(|r| finite(r, k))
                 .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
                     (lo.min(v), hi.max(v))
                 });
-            hi - lo
+            if hi > lo { hi - lo } else { 1.0 }
         })
         .collect();
+    let by_index: BTreeMap<u64, &PointRow> = rows.iter().map(|r| (r.index, r)).collect();
     let mut scored: Vec<(f64, u64)> = Vec::new();
-    for row in rows {
-        let mut score = 0.0_f64;
-        for (&k, &range) in metrics.iter().zip(&ranges) {
-            let Some(f) = value(row.index, k) else {
-                continue;
-            };
-            if !(range > 0.0) {
-                continue;
-            }
-            for (j, &stride) in strides.iter().enumerate() {
-                let at = (row.index / stride) % counts[j];
-                let below = (at > 0).then(|| value(row.index - stride, k)).flatten();
-                let above = (at + 1 < counts[j])
-                    .then(|| value(row.index + stride, k))
-                    .flatten();
-                let local = match (below, above) {
-                    (Some(b), Some(a)) => 0.5 * (a - b).abs() + (a - 2.0 * f + b).abs(),
-                    (Some(x), None) | (None, Some(x)) => (x - f).abs(),
+    for loose in screened {
+        let Some(row) = by_index.get(&loose.index) else {
+            continue;
+        };
+        let score = if (row.status == Status::Ok) != (loose.status == Status::Ok) {
+            f64::INFINITY
+        } else if row.status != Status::Ok {
+            0.0
+        } else {
+            metrics
+                .iter()
+                .zip(&ranges)
+                .map(|(&k, range)| match (finite(row, k), finite(loose, k)) {
+                    (Some(a), Some(b)) => (a - b).abs() / range,
                     (None, None) => 0.0,
-                };
-                score = score.max(local / range);
-            }
-        }
+                    _ => f64::INFINITY,
+                })
+                .fold(0.0, f64::max)
+        };
         if score > 0.0 {
             scored.push((score, row.index));
         }
     }
-    // Steepest first; ties by index, so the choice is deterministic.
     scored.sort_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
-    let mut taken = std::collections::BTreeSet::new();
-    let mut chosen = Vec::with_capacity(n);
-    for &(_, index) in &scored {
-        if chosen.len() == n {
-            break;
-        }
-        let next_to_taken = strides.iter().enumerate().any(|(j, &stride)| {
-            let at = (index / stride) % counts[j];
-            (at > 0 && taken.contains(&(index - stride)))
-                || (at + 1 < counts[j] && taken.contains(&(index + stride)))
-        });
-        if !next_to_taken {
-            taken.insert(index);
-            chosen.push(index);
-        }
-    }
-    chosen
+    scored.into_iter().map(|(_, k)| k).collect()
 }
 
 /// The corners of the grid and `total` candidates (the `k`-th is point `at(k)`) evenly spread.
@@ -322,17 +306,106 @@ pub fn tighter(step: StepControl) -> StepControl {
     }
 }
 
+/// The looser setting of a self-check's screen: twice the step (at most the horizon
+/// `t_end`), or a tolerance 1000 times larger (at most 0.1).
+#[must_use]
+pub fn looser(step: StepControl, t_end: f64) -> StepControl {
+    match step {
+        StepControl::Fixed(h) => StepControl::Fixed((2.0 * h).min(t_end)),
+        StepControl::Tolerance(tol) => StepControl::Tolerance(shift_decimal(tol, 3).min(0.1)),
+    }
+}
+
 /// `x / 100` as the decimal number it is written as: `1e-11` gives `1e-13` exactly as
-/// parsed, not `9.999999999999999e-14` (the shortest decimal of `x` with its exponent
-/// lowered by two).
+/// parsed, not `9.999999999999999e-14`.
 fn hundredth(x: f64) -> f64 {
+    shift_decimal(x, -2)
+}
+
+/// `x · 10^by` as a decimal number: the shortest decimal of `x` with its exponent moved by
+/// `by` (`1e-13` and 3 give `1e-10` exactly as parsed).
+fn shift_decimal(x: f64, by: i32) -> f64 {
     let text = format!("{x:e}");
     text.split_once('e')
         .and_then(|(mantissa, exp)| {
             let exp: i32 = exp.parse().ok()?;
-            format!("{mantissa}e{}", exp - 2).parse().ok()
+            format!("{mantissa}e{}", exp + by).parse().ok()
         })
-        .unwrap_or(x / 100.0)
+        .unwrap_or(x * 10f64.powi(by))
+}
+
+/// Runs `points` of `def` at the `setting` (named `what` in errors) on `threads` workers.
+fn rerun(
+    def: &SweepDefinition,
+    setting: StepControl,
+    what: &str,
+    points: &[u64],
+    threads: usize,
+) -> Result<Vec<PointRow>, SweepError> {
+    let mut other = def.clone();
+    other.plan = def
+        .plan
+        .with_step(setting)
+        .map_err(|e| SweepError::SelfCheck(format!("the {what} setting: {e}")))?;
+    let threads = threads.clamp(1, points.len().max(1));
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .map_err(|e| SweepError::Threads {
+            threads,
+            reason: e.to_string(),
+        })?;
+    Ok(pool.install(|| points.par_iter().map(|&i| run_point(&other, i)).collect()))
+}
+
+/// The screen of a self-check: every point of `rows` that finished run again at the
+/// [`looser`] setting on `threads` workers, for [`most_sensitive`] to rank.
+///
+/// # Errors
+/// The looser setting is invalid for the method; the worker threads cannot be started.
+pub fn screen(
+    def: &SweepDefinition,
+    rows: &[PointRow],
+    threads: usize,
+) -> Result<Vec<PointRow>, SweepError> {
+    let points: Vec<u64> = rows
+        .iter()
+        .filter(|r| r.status == Status::Ok)
+        .map(|r| r.index)
+        .collect();
+    rerun(
+        def,
+        looser(def.plan.step, def.plan.t_end),
+        "screen's looser",
+        &points,
+        threads,
+    )
+}
+
+/// The self-check of a sweep with these `rows` (its finished points, in index order): the
+/// [`screen`] when it chooses ([`screens`]), the points of [`check_points_among`], and their
+/// [`self_check`]; `None` when the check has no points (`size` off, no rows).
+///
+/// # Errors
+/// As [`screen`] and [`self_check`].
+pub fn check_sweep(
+    def: &SweepDefinition,
+    rows: &[PointRow],
+    size: CheckSize,
+    threads: usize,
+) -> Result<Option<CheckReport>, SweepError> {
+    let screened = if screens(size, rows.len() as u64) {
+        screen(def, rows, threads)?
+    } else {
+        Vec::new()
+    };
+    let points = check_points_among(def, size, rows, &screened);
+    if points.is_empty() {
+        return Ok(None);
+    }
+    let mut report = self_check(def, rows, &points, threads)?;
+    report.screen = (!screened.is_empty()).then(|| looser(def.plan.step, def.plan.t_end));
+    Ok(Some(report))
 }
 
 /// Re-runs `points` of `def` at the tighter setting on `threads` workers and compares their
@@ -348,21 +421,7 @@ pub fn self_check(
     threads: usize,
 ) -> Result<CheckReport, SweepError> {
     let setting = tighter(def.plan.step);
-    let mut tight = def.clone();
-    tight.plan = def
-        .plan
-        .with_step(setting)
-        .map_err(|e| SweepError::SelfCheck(format!("the tighter setting: {e}")))?;
-    let threads = threads.clamp(1, points.len().max(1));
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .map_err(|e| SweepError::Threads {
-            threads,
-            reason: e.to_string(),
-        })?;
-    let again: Vec<PointRow> =
-        pool.install(|| points.par_iter().map(|&i| run_point(&tight, i)).collect());
+    let again = rerun(def, setting, "tighter", points, threads)?;
     let by_index: BTreeMap<u64, &PointRow> = rows.iter().map(|r| (r.index, r)).collect();
     let mut changes: Vec<MetricChange> = def
         .metrics
@@ -403,6 +462,7 @@ pub fn self_check(
     Ok(CheckReport {
         points: points.to_vec(),
         setting,
+        screen: None,
         changes,
         status_changed,
     })

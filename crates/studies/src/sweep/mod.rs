@@ -99,8 +99,8 @@ use std::fmt;
 use std::path::PathBuf;
 
 pub use check::{
-    CheckReport, CheckSize, MetricChange, check_points, check_points_among, self_check,
-    steepest_points,
+    CheckReport, CheckSize, MetricChange, check_points, check_points_among, check_sweep, looser,
+    most_sensitive, screen, screens, self_check,
 };
 pub use compare::{MetricDifference, SweepDiff, diff, diff_folders, read_folder};
 pub use compute::{COMPUTE, ComputeRecord, ComputeRun, ComputeTotals};

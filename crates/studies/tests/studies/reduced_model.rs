@@ -90,6 +90,16 @@ fn largest_differences(run: &str) -> Vec<(String, f64, usize)> {
         .collect()
 }
 
+/// How far a metric of the two models may differ when both runs are the same computation in
+/// exact arithmetic (see [`reduced_and_full_models_agree_to_round_off_at_a_fixed_step`]).
+fn round_off_bound(metric: &str) -> f64 {
+    match metric.split(':').next().unwrap_or("") {
+        "max_tilt" | "max" | "min" => 2e-11,
+        "time_tilt_exceeds" | "first_time" => 1e-10,
+        _ => 1e-12,
+    }
+}
+
 #[test]
 fn reduced_and_full_models_agree_to_round_off_at_a_fixed_step() {
     let differences = largest_differences("integrator = \"gauss8\"\ndt = 0.01");
@@ -104,11 +114,7 @@ fn reduced_and_full_models_agree_to_round_off_at_a_fixed_step() {
         // ~f''(√ε t)²/2 (≈ 1e-12 on these spins), so a round-off difference that turns its
         // path moves the value that much. A crossing time: the round-off of the crossed value
         // divided by its rate.
-        let bound = match metric.split(':').next().unwrap_or("") {
-            "max_tilt" | "max" | "min" => 2e-11,
-            "time_tilt_exceeds" | "first_time" => 1e-10,
-            _ => 1e-12,
-        };
+        let bound = round_off_bound(&metric);
         assert!(largest <= bound, "{metric}: {largest:e} (bound {bound:e})");
     }
 }
@@ -122,7 +128,80 @@ fn reduced_and_full_models_agree_to_the_tolerance_with_error_control() {
     }
 }
 
-/// The rule: the reduction runs for a vector-space method whose every metric it gives; a
+/// The Taylor method on the hand-written coefficients: a fixed order at a fixed step is the
+/// same polynomial for `Γ, Π, α, p_α` in both models (the other rows of `R` do not enter
+/// them), so every shared metric agrees to round-off, as Gauss–Legendre's do (order 16 at
+/// dt = 0.01 s leaves `RᵀR = 𝟙` to round-off); with its order and step from the tolerance the
+/// step sequences differ, and they agree to the tolerance's level.
+#[test]
+fn reduced_and_full_models_agree_with_the_taylor_method() {
+    for (metric, largest, compared) in largest_differences("integrator = \"taylor16\"\ndt = 0.01") {
+        eprintln!("taylor16: {metric}: {largest:.1e} over {compared} points");
+        assert!(compared >= 6, "{metric}: {compared} points compared");
+        let bound = round_off_bound(&metric);
+        assert!(largest <= bound, "{metric}: {largest:e} (bound {bound:e})");
+    }
+    for (metric, largest, compared) in largest_differences("integrator = \"taylor\"\ntol = 1e-12") {
+        eprintln!("taylor: {metric}: {largest:.1e} over {compared} points");
+        assert!(compared >= 6, "{metric}: {compared} points compared");
+        assert!(largest <= 1e-8, "{metric}: {largest:e}");
+    }
+}
+
+/// The Taylor method of a fixed order `p` on the reduction converges at order `p`: halving
+/// the step divides the final state's error (against vern9 at 1e-15) by about `2ᵖ`.
+#[test]
+fn the_taylor_method_on_the_reduction_has_its_order() {
+    let metrics = r#""final:alpha", "final:alpha_dot", "final:omega_x", "final:Lz""#;
+    let run = |integrator: &str, step: &str| {
+        let text = format!(
+            r#"
+scene = "free-hoop"
+[parameters]
+alpha_dot0 = 0.3
+theta0 = 1.4
+omega0 = 3.0
+alpha0 = 2.42
+[run]
+integrator = "{integrator}"
+{step}
+t_end = 2.0
+[[axes]]
+parameter = "m"
+values = [0.1]
+[metrics]
+record = [{metrics}]
+"#
+        );
+        let def = SweepDefinition::parse(&text, "order", &[]).unwrap();
+        assert!(def.reduction().is_some());
+        let row = run_point(&def, 0);
+        assert_eq!(row.status, sweep::Status::Ok, "{}", row.reason);
+        row.metrics
+            .into_iter()
+            .map(Option::unwrap)
+            .collect::<Vec<f64>>()
+    };
+    let exact = run("vern9", "tol = 1e-15");
+    let error = |values: Vec<f64>| {
+        values
+            .iter()
+            .zip(&exact)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max)
+    };
+    let (coarse, fine) = (
+        error(run("taylor8", "dt = 0.04")),
+        error(run("taylor8", "dt = 0.02")),
+    );
+    let order = (coarse / fine).log2();
+    eprintln!("taylor8: {coarse:.2e} at dt = 0.04, {fine:.2e} at 0.02: order {order:.2}");
+    assert!(fine > 1e-12, "above round-off: {fine:e}");
+    assert!((7.5..=8.7).contains(&order), "observed order {order}");
+}
+
+/// The rule: the reduction runs for a vector-space method (the Taylor method among them) whose
+/// every metric it gives; a
 /// Lie-group method (the coupled LGVI integrates `R` itself) or a metric of the full rotation
 /// runs the full model.
 #[test]
@@ -134,6 +213,11 @@ fn the_reduction_runs_only_where_it_serves() {
     );
     assert!(
         grid("integrator = \"gauss8\"\ndt = 0.01", "")
+            .reduction()
+            .is_some()
+    );
+    assert!(
+        grid("integrator = \"taylor\"\ntol = 1e-12", "")
             .reduction()
             .is_some()
     );

@@ -1,0 +1,374 @@
+//! The Taylor coefficients of the free hoop, written out by hand: the equations of
+//! [`super::EulerPoissonHoop`] (and of the full model, whose other two rows of `R` move as `Γ`
+//! does) as a [`TaylorSystem`].
+//!
+//! With `s, c = sin α, cos α` and `S, C = sin 2α, cos 2α`, the closed-form velocities are
+//! linear in `Π` with coefficients affine in `S, C` (the `xy` block's determinant does not
+//! depend on `α`):
+//!
+//! `ω_x = (jd + μ/2) Π_x/d + (μ/2d)(C Π_x + S Π_y)`, `ω_y = (jd + μ/2) Π_y/d + (μ/2d)(S Π_x − C Π_y)`,
+//! `d = jd (jd + μ)`, `ω_z = (Π_z − p_α)/(Ma²)`, `α̇ = p_α/μ − ω_z`,
+//!
+//! and the right-hand side is polynomial in `(Γ, Π, s, c, S, C, ω)`:
+//! `Γ̇ = Γ × ω`, `Π̇ = Π × ω + k (−Γ_z s, Γ_z c, G)`, `ṗ_α = μ (S D/2 − C W) + k G`, with
+//! `G = Γ_x s − Γ_y c`, `D = ω_x² − ω_y²`, `W = ω_x ω_y`. So the normalized coefficients follow
+//! from Cauchy products (`(ab)ₖ = Σⱼ aⱼ bₖ₋ⱼ`) and the sine–cosine recursion
+//! (`k sₖ = Σⱼ₌₁ᵏ j uⱼ cₖ₋ⱼ`, `k cₖ = −Σⱼ₌₁ᵏ j uⱼ sₖ₋ⱼ` for `s, c = sin u, cos u`): Moore 1966,
+//! ch. 11; Jorba & Zou 2005, §3; Griewank & Walther 2008, §13.2. Per order, 29 products on the
+//! reduction (6 more for each further row of `R`).
+
+use std::cell::RefCell;
+
+use tumble_integrators::taylor::{TaylorError, TaylorSystem, check_finite};
+
+use super::EulerPoissonHoop;
+
+/// Where the state's parts are in a vector of `n` components.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+struct Layout {
+    n: usize,
+    /// `Γ` (the third row of `R`).
+    gamma: [usize; 3],
+    /// The other rows of `R`, each moving as `ṙ = r × ω` (none on the reduction).
+    rows: &'static [[usize; 3]],
+    /// `Π`, `α`, `p_α`: `pi..pi + 3`, `alpha`, `alpha + 1`.
+    pi: usize,
+    alpha: usize,
+}
+
+/// `(Γ, Π, α, p_α)` ([`super::State`]).
+const REDUCED: Layout = Layout {
+    n: 8,
+    gamma: [0, 1, 2],
+    rows: &[],
+    pi: 3,
+    alpha: 6,
+};
+
+/// `(R column-major, Π, α, p_α)`, the full model's flat state ([`crate::scenes::free_hoop::flatten`]):
+/// row `a` of `R` is components `a, a + 3, a + 6`.
+const FULL: Layout = Layout {
+    n: 14,
+    gamma: [2, 5, 8],
+    rows: &[[0, 3, 6], [1, 4, 7]],
+    pi: 9,
+    alpha: 12,
+};
+
+/// The series of the state's components and of the intermediate quantities, each
+/// contiguous (component-major, so that every Cauchy product reads two slices).
+#[derive(Debug, Clone, Default)]
+struct Series {
+    /// Coefficients per order a series holds.
+    len: usize,
+    /// The state: component `i`'s coefficients at `i * len ..`.
+    x: Vec<f64>,
+    /// `sin α, cos α, sin 2α, cos 2α, ω_x, ω_y, ω_z, D, W`, one series each.
+    aux: Vec<f64>,
+}
+
+/// The series of [`Series::aux`].
+const SIN: usize = 0;
+const COS: usize = 1;
+const SIN2: usize = 2;
+const COS2: usize = 3;
+const WX: usize = 4;
+const WY: usize = 5;
+const WZ: usize = 6;
+const D: usize = 7;
+const W: usize = 8;
+const AUX: usize = 9;
+
+impl Series {
+    /// Room for orders `0 ..= order` of `n` components (grown once).
+    fn reserve(&mut self, n: usize, order: usize) {
+        if self.len < order + 1 || self.x.len() < n * self.len {
+            self.len = self.len.max(order + 1);
+            self.x = vec![0.0; n * self.len];
+            self.aux = vec![0.0; AUX * self.len];
+        }
+    }
+}
+
+/// The free hoop's equations as a [`TaylorSystem`] (module doc): on the Euler–Poisson state
+/// ([`TaylorHoop::reduced`]) or on the full model's ([`TaylorHoop::full`]).
+#[derive(Debug, Clone)]
+pub struct TaylorHoop {
+    eq: EulerPoissonHoop,
+    layout: Layout,
+    /// The workspace of [`TaylorSystem::coefficients`].
+    series: RefCell<Series>,
+}
+
+impl TaylorHoop {
+    /// On `(Γ, Π, α, p_α)`.
+    #[must_use]
+    pub fn reduced(eq: EulerPoissonHoop) -> Self {
+        Self {
+            eq,
+            layout: REDUCED,
+            series: RefCell::new(Series::default()),
+        }
+    }
+
+    /// On the full model's flat state `(R, Π, α, p_α)` ∈ ℝ¹⁴.
+    #[must_use]
+    pub fn full(eq: EulerPoissonHoop) -> Self {
+        Self {
+            eq,
+            layout: FULL,
+            series: RefCell::new(Series::default()),
+        }
+    }
+}
+
+/// `Σⱼ₌₀ᵏ aⱼ bₖ₋ⱼ` (a multiply and an add: `f64::mul_add` is a library call on an x86-64
+/// target without FMA, which the binary is built for).
+#[inline]
+fn cauchy(a: &[f64], b: &[f64], k: usize) -> f64 {
+    a[..=k]
+        .iter()
+        .zip(b[..=k].iter().rev())
+        .fold(0.0, |s, (x, y)| s + x * y)
+}
+
+impl TaylorSystem for TaylorHoop {
+    fn dim(&self) -> usize {
+        self.layout.n
+    }
+
+    fn coefficients(
+        &self,
+        _t0: f64,
+        x0: &[f64],
+        order: usize,
+        coeffs: &mut [f64],
+    ) -> Result<(), TaylorError> {
+        let Layout {
+            n,
+            gamma: g,
+            rows,
+            pi,
+            alpha,
+        } = self.layout;
+        let p = alpha + 1;
+        let mut series = self.series.borrow_mut();
+        series.reserve(n, order);
+        let Series { len, x, aux } = &mut *series;
+        let len = *len;
+        for (i, v) in x0[..n].iter().enumerate() {
+            x[i * len] = *v;
+        }
+        let eq = &self.eq;
+        let half_mu = 0.5 * eq.mu;
+        let (a0, a1) = ((eq.jd + half_mu) * eq.inv_det, half_mu * eq.inv_det);
+        (aux[SIN * len], aux[COS * len]) = x0[alpha].sin_cos();
+        (aux[SIN2 * len], aux[COS2 * len]) = (2.0 * x0[alpha]).sin_cos();
+        for k in 0..order {
+            // Orders 0 ..= k are known; order k + 1 of the state is written.
+            let xs = |i: usize| &x[i * len..i * len + k + 1];
+            if k > 0 {
+                // sin/cos of α and of 2α: k sₖ = Σ j αⱼ cₖ₋ⱼ, k cₖ = −Σ j αⱼ sₖ₋ⱼ.
+                let a = xs(alpha);
+                let (mut ss, mut cc) = (0.0, 0.0);
+                let (mut ss2, mut cc2) = (0.0, 0.0);
+                for j in 1..=k {
+                    let u = j as f64 * a[j];
+                    ss += u * aux[COS * len + k - j];
+                    cc += u * aux[SIN * len + k - j];
+                    ss2 += u * aux[COS2 * len + k - j];
+                    cc2 += u * aux[SIN2 * len + k - j];
+                }
+                let inv = 1.0 / k as f64;
+                aux[SIN * len + k] = ss * inv;
+                aux[COS * len + k] = -cc * inv;
+                aux[SIN2 * len + k] = 2.0 * ss2 * inv;
+                aux[COS2 * len + k] = -2.0 * cc2 * inv;
+            }
+            let at = |q: usize| &aux[q * len..q * len + k + 1];
+            // ωₖ, linear in Π with coefficients affine in sin 2α, cos 2α.
+            let (px, py, pz) = (xs(pi), xs(pi + 1), xs(pi + 2));
+            let (s2, c2) = (at(SIN2), at(COS2));
+            let wx = a0 * px[k] + a1 * (cauchy(c2, px, k) + cauchy(s2, py, k));
+            let wy = a0 * py[k] + a1 * (cauchy(s2, px, k) - cauchy(c2, py, k));
+            let wz = (pz[k] - xs(p)[k]) / eq.jn;
+            aux[WX * len + k] = wx;
+            aux[WY * len + k] = wy;
+            aux[WZ * len + k] = wz;
+            let at = |q: usize| &aux[q * len..q * len + k + 1];
+            let (wx, wy) = (at(WX), at(WY));
+            let dk = cauchy(wx, wx, k) - cauchy(wy, wy, k);
+            let wk = cauchy(wx, wy, k);
+            aux[D * len + k] = dk;
+            aux[W * len + k] = wk;
+            let at = |q: usize| &aux[q * len..q * len + k + 1];
+            let (wx, wy, wz) = (at(WX), at(WY), at(WZ));
+            let scale = 1.0 / (k + 1) as f64;
+            let mut next = [0.0; 14];
+            // Each row r of R (Γ among them): ṙ = r × ω.
+            for row in rows.iter().chain(std::iter::once(&g)) {
+                let (rx, ry, rz) = (xs(row[0]), xs(row[1]), xs(row[2]));
+                next[row[0]] = cauchy(ry, wz, k) - cauchy(rz, wy, k);
+                next[row[1]] = cauchy(rz, wx, k) - cauchy(rx, wz, k);
+                next[row[2]] = cauchy(rx, wy, k) - cauchy(ry, wx, k);
+            }
+            // Π̇ = Π × ω + k (−Γ_z s, Γ_z c, G), G = Γ_x s − Γ_y c.
+            let (gx, gy, gz) = (xs(g[0]), xs(g[1]), xs(g[2]));
+            let (s, c) = (at(SIN), at(COS));
+            let gg = cauchy(gx, s, k) - cauchy(gy, c, k);
+            next[pi] = cauchy(py, wz, k) - cauchy(pz, wy, k) - eq.k * cauchy(gz, s, k);
+            next[pi + 1] = cauchy(pz, wx, k) - cauchy(px, wz, k) + eq.k * cauchy(gz, c, k);
+            next[pi + 2] = cauchy(px, wy, k) - cauchy(py, wx, k) + eq.k * gg;
+            // α̇ = p/μ − ω_z; ṗ = μ (S D/2 − C W) + k G.
+            next[alpha] = xs(p)[k] / eq.mu - wz[k];
+            next[p] =
+                eq.mu * (0.5 * cauchy(at(SIN2), at(D), k) - cauchy(at(COS2), at(W), k)) + eq.k * gg;
+            for (i, v) in next[..n].iter().enumerate() {
+                x[i * len + k + 1] = v * scale;
+            }
+        }
+        for k in 0..=order {
+            for i in 0..n {
+                coeffs[k * n + i] = x[i * len + k];
+            }
+        }
+        check_finite(coeffs, n, order)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scenes::free_hoop::{FREE_HOOP, FlatFreeHoop, FreeHoopScene};
+    use nalgebra::{Rotation3, SVector};
+    use tumble_integrators::Ode;
+
+    /// The free hoop of the map's parameters, with the bead off-centre and spinning.
+    fn model() -> crate::scenes::free_hoop::FreeHoop {
+        let mut p = FREE_HOOP.default_params();
+        p.set("m", 0.1).unwrap();
+        p.set("omega0", 5.0).unwrap();
+        FreeHoopScene::model(&p).unwrap().0
+    }
+
+    /// A full state where every coefficient is at work: tilted, spinning about every axis,
+    /// the bead moving.
+    fn full_state() -> SVector<f64, 14> {
+        let r = Rotation3::from_euler_angles(0.4, -1.1, 0.7);
+        let mut y = SVector::<f64, 14>::zeros();
+        y.fixed_rows_mut::<9>(0)
+            .copy_from_slice(r.matrix().as_slice());
+        y.fixed_rows_mut::<3>(9).copy_from_slice(&[1.2, -0.7, 0.9]);
+        y[12] = 2.3;
+        y[13] = 0.35;
+        y
+    }
+
+    /// `x(h)` by 2000 RK4 steps of `f`: an independent solution over a short step, to
+    /// round-off (the error is `~ (h/2000)⁴`).
+    fn rk4<const N: usize>(
+        f: impl Fn(&SVector<f64, N>) -> SVector<f64, N>,
+        mut y: SVector<f64, N>,
+        h: f64,
+    ) -> SVector<f64, N> {
+        let steps = 2000;
+        let dt = h / f64::from(steps);
+        for _ in 0..steps {
+            let k1 = f(&y);
+            let k2 = f(&(y + k1 * (dt / 2.0)));
+            let k3 = f(&(y + k2 * (dt / 2.0)));
+            let k4 = f(&(y + k3 * dt));
+            y += (k1 + k2 * 2.0 + k3 * 2.0 + k4) * (dt / 6.0);
+        }
+        y
+    }
+
+    /// Checks `system`'s coefficients at `x0` against the right-hand side `f`: `x₁ = F(x₀)`,
+    /// `x₂ = ½ dF/dt` along the flow (a central difference), and the order-24 polynomial at
+    /// `h = 0.05` against RK4's solution over that step (every coefficient counts there).
+    fn check<const N: usize>(
+        system: &TaylorHoop,
+        f: impl Fn(&SVector<f64, N>) -> SVector<f64, N>,
+        x0: SVector<f64, N>,
+    ) {
+        assert_eq!(system.dim(), N);
+        let order = 24;
+        let mut c = vec![0.0; (order + 1) * N];
+        system
+            .coefficients(0.0, x0.as_slice(), order, &mut c)
+            .unwrap();
+        let f0 = f(&x0);
+        for i in 0..N {
+            assert!(
+                (c[N + i] - f0[i]).abs() <= 1e-14 * (1.0 + f0[i].abs()),
+                "x1[{i}]: {} vs {}",
+                c[N + i],
+                f0[i]
+            );
+        }
+        let h = 1e-5;
+        let (fp, fm) = (f(&(x0 + f0 * h)), f(&(x0 - f0 * h)));
+        for i in 0..N {
+            let x2 = (fp[i] - fm[i]) / (2.0 * h) / 2.0;
+            assert!(
+                (c[2 * N + i] - x2).abs() <= 1e-8 * (1.0 + x2.abs()),
+                "x2[{i}]: {} vs {x2}",
+                c[2 * N + i]
+            );
+        }
+        let h = 0.05;
+        let exact = rk4(&f, x0, h);
+        for i in 0..N {
+            let sum = (0..=order).rev().fold(0.0, |s, k| s * h + c[k * N + i]);
+            assert!(
+                (sum - exact[i]).abs() <= 1e-13 * (1.0 + exact[i].abs()),
+                "x({h})[{i}]: {sum} vs {}",
+                exact[i]
+            );
+        }
+    }
+
+    /// On the reduction: the coefficients against [`EulerPoissonHoop`]'s right-hand side.
+    #[test]
+    fn reduced_coefficients_follow_the_right_hand_side_and_the_flow() {
+        let eq = EulerPoissonHoop::new(&model());
+        let x0 = EulerPoissonHoop::reduce(&crate::scenes::free_hoop::unflatten(&full_state()));
+        let f = |y: &super::super::State| {
+            let mut dy = super::super::State::zeros();
+            eq.rhs(0.0, y, &mut dy);
+            dy
+        };
+        check(&TaylorHoop::reduced(eq), f, x0);
+    }
+
+    /// On the full model: the coefficients against the full free hoop's right-hand side (the
+    /// scene's own, through its coupled-body equations).
+    #[test]
+    fn full_coefficients_follow_the_full_models_right_hand_side_and_the_flow() {
+        let model = model();
+        let flat = FlatFreeHoop::new(model).unwrap();
+        let f = |y: &SVector<f64, 14>| {
+            let mut dy = SVector::<f64, 14>::zeros();
+            flat.rhs(0.0, y, &mut dy);
+            dy
+        };
+        check(
+            &TaylorHoop::full(EulerPoissonHoop::new(&model)),
+            f,
+            full_state(),
+        );
+    }
+
+    /// A singular point is a typed error, not a NaN: a NaN state's first coefficient says so.
+    #[test]
+    fn a_non_finite_state_is_an_error() {
+        let eq = EulerPoissonHoop::new(&model());
+        let mut x0 = [0.0; 8];
+        x0[3] = f64::NAN;
+        let mut c = vec![0.0; 3 * 8];
+        let e = TaylorHoop::reduced(eq)
+            .coefficients(0.0, &x0, 2, &mut c)
+            .unwrap_err();
+        assert!(matches!(e, TaylorError::NonFinite { order: 0, .. }), "{e}");
+    }
+}
