@@ -176,7 +176,7 @@ fn a_slot_beyond_the_workspace_is_refused_before_any_code_exists() {
 }
 
 /// Outputs the program never writes keep the workspace's values (an input passed through, a
-/// value from an earlier run), and slots the program only reads are not changed.
+/// value left in the workspace), and slots the program only reads are not changed.
 #[test]
 fn slots_the_program_does_not_write_keep_their_values() {
     let code = [Instr {
