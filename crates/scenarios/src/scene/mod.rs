@@ -13,6 +13,7 @@ use tumble_integrators::{DenseStep, Flow, ProblemKind};
 use crate::error::SceneError;
 use crate::params::{ParamSpec, Params};
 pub use crate::recommendation::Recommendation;
+pub use crate::scenes::euler_poisson::lanes::TiltRun;
 
 mod plan;
 mod rows;
@@ -250,6 +251,22 @@ pub struct Reduction {
     pub columns: &'static [&'static str],
     /// Runs it, as [`Scene::simulate`] runs the scene (rows of [`Reduction::columns`]).
     pub simulate: fn(&Params, &RunPlan, &mut dyn Recorder) -> Result<RunSummary, SceneError>,
+    /// Runs many points at once for the tilt metrics alone, when it can.
+    pub lanes: Option<TiltLanes>,
+}
+
+/// Many runs of a [`Reduction`] at once, several per instruction, for the tilt metrics alone
+/// (the hoop-tilt map's): each run's result is the same whatever the other runs are.
+#[derive(Debug)]
+pub struct TiltLanes {
+    /// Runs per batch.
+    pub width: usize,
+    /// Whether [`TiltLanes::run`] runs a plan.
+    pub runs: fn(&RunPlan) -> bool,
+    /// Runs every point (parameters) with a plan; the threshold (rad) is the tilt whose first
+    /// crossing is reported.
+    #[allow(clippy::type_complexity)]
+    pub run: fn(&[Params], &RunPlan, Option<f64>) -> Vec<Result<TiltRun, SceneError>>,
 }
 
 impl Reduction {

@@ -46,8 +46,11 @@ use tumble_integrators::{Ode, ProblemKind};
 use super::free_hoop::FreeHoopScene;
 use crate::error::SceneError;
 use crate::params::Params;
-use crate::scene::{Recorder, Reduction, RunPlan, RunSummary, run_taylor_vector, run_vector};
+use crate::scene::{
+    Recorder, Reduction, RunPlan, RunSummary, TiltLanes, run_taylor_vector, run_vector,
+};
 
+pub mod lanes;
 mod taylor;
 pub use taylor::TaylorHoop;
 
@@ -131,15 +134,40 @@ impl EulerPoissonHoop {
         ([wx, wy, wz], adot)
     }
 
+    /// The energy `T + V` at `y` and its magnitude `|T| + |m g a|` (the scale of its relative
+    /// error), with `(sin α, cos α)`.
+    #[inline]
+    fn energy_at(&self, y: &State, s: f64, c: f64) -> (f64, f64, f64) {
+        let (w, adot) = self.velocities(y, s, c);
+        let kinetic = 0.5 * (w[0] * y[3] + w[1] * y[4] + w[2] * y[5] + adot * y[7]);
+        let potential = self.k * (y[0] * c + y[1] * s);
+        (kinetic + potential, kinetic.abs() + self.k.abs(), adot)
+    }
+
+    /// The energy `T + V` at `y` and its magnitude `|T| + |m g a|`, as the rows hold them.
+    #[must_use]
+    pub fn energy(&self, y: &State) -> (f64, f64) {
+        let (s, c) = y[6].sin_cos();
+        let (e, magnitude, _) = self.energy_at(y, s, c);
+        (e, magnitude)
+    }
+
+    /// The tilt of the hoop's normal from the horizontal plane, `asin |Γ_z| / |Γ|`, from the
+    /// three components of `Γ` (the rows' `tilt`).
+    #[must_use]
+    #[inline]
+    pub fn tilt(gx: f64, gy: f64, gz: f64) -> f64 {
+        let gamma = (gx * gx + gy * gy + gz * gz).sqrt();
+        (gz / gamma).abs().min(1.0).asin()
+    }
+
     /// Writes the row of `(t, y)` in [`COLUMNS`] order; the relative energy error's slot gets
     /// the energy's magnitude, `T` plus the potential's amplitude `m g a`, as the full model's
     /// rows do (the energy scale of [`crate::scene::run_vector`]).
     pub fn row(&self, t: f64, y: &State, out: &mut [f64]) {
         let (s, c) = y[6].sin_cos();
-        let (w, adot) = self.velocities(y, s, c);
-        let kinetic = 0.5 * (w[0] * y[3] + w[1] * y[4] + w[2] * y[5] + adot * y[7]);
-        let potential = self.k * (y[0] * c + y[1] * s);
-        let gamma = (y[0] * y[0] + y[1] * y[1] + y[2] * y[2]).sqrt();
+        let (w, _) = self.velocities(y, s, c);
+        let (energy, magnitude, adot) = self.energy_at(y, s, c);
         let values = [
             t,
             y[6],
@@ -147,10 +175,10 @@ impl EulerPoissonHoop {
             w[1],
             w[2],
             adot,
-            kinetic + potential,
-            kinetic.abs() + self.k.abs(),
+            energy,
+            magnitude,
             y[0] * y[3] + y[1] * y[4] + y[2] * y[5],
-            (y[2] / gamma).abs().min(1.0).asin(),
+            Self::tilt(y[0], y[1], y[2]),
         ];
         out.copy_from_slice(&values);
     }
@@ -221,6 +249,11 @@ pub static EULER_POISSON: Reduction = Reduction {
               the bead (Γ = Rᵀe_z, Π, α, p_α: 8 numbers instead of R, Π, α, p_α: 14)",
     columns: &COLUMNS,
     simulate,
+    lanes: Some(TiltLanes {
+        width: lanes::LANES,
+        runs: lanes::runs,
+        run: lanes::tilt_runs,
+    }),
 };
 
 #[cfg(test)]

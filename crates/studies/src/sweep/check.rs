@@ -29,7 +29,7 @@ use tumble_scenarios::StepControl;
 
 use super::SweepError;
 use super::definition::{Sampling, SweepDefinition};
-use super::engine::run_point;
+use super::engine::run_points;
 use super::journal::{PointRow, Status};
 use super::metrics::Metric;
 
@@ -355,7 +355,13 @@ fn rerun(
             threads,
             reason: e.to_string(),
         })?;
-    Ok(pool.install(|| points.par_iter().map(|&i| run_point(&other, i)).collect()))
+    let width = other.lanes().map_or(1, |l| l.width);
+    Ok(pool.install(|| {
+        points
+            .par_chunks(width)
+            .flat_map_iter(|chunk| run_points(&other, chunk))
+            .collect()
+    }))
 }
 
 /// The screen of a self-check: every point of `rows` that finished run again at the

@@ -10,7 +10,7 @@ use super::metrics::Metric;
 use super::overrides::Override;
 use super::refine::{Lattice, Refinement};
 use tumble_scenarios::params::Params;
-use tumble_scenarios::scene::{Reduction, RunPlan, Scene, StepControl};
+use tumble_scenarios::scene::{Reduction, RunPlan, Scene, StepControl, TiltLanes};
 use tumble_scenarios::toml_file;
 
 /// How the points of an axis given by a range are spread.
@@ -292,6 +292,24 @@ impl SweepDefinition {
                 None => *m == Metric::MaxEnergyRelErr,
             });
         (served && reduction.runs(&self.plan)).then_some(reduction)
+    }
+
+    /// The reduction's lanes when they serve this sweep: its reduction runs them
+    /// ([`Self::reduction`]), they run its plan, and every metric is one of the tilt metrics
+    /// they report (`max_tilt`, `final_tilt`, `time_tilt_exceeds`, `max_energy_rel_err`).
+    #[must_use]
+    pub fn lanes(&self) -> Option<&'static TiltLanes> {
+        let lanes = self.reduction()?.lanes.as_ref()?;
+        let served = self.metrics.iter().all(|m| {
+            matches!(
+                m,
+                Metric::MaxTilt
+                    | Metric::FinalTilt
+                    | Metric::TimeTiltExceeds
+                    | Metric::MaxEnergyRelErr
+            )
+        });
+        (served && (lanes.runs)(&self.plan)).then_some(lanes)
     }
 
     /// The built-in hoop-tilt map ([`super::TILT_MAP`]) with `overrides`.

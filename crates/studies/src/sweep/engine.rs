@@ -12,9 +12,11 @@ use rayon::prelude::*;
 use super::compute::{ComputeRecord, ComputeRun};
 use super::definition::SweepDefinition;
 use super::journal::{self, DEFINITION, JOURNAL, PointRow, RESULTS, Status};
-use super::metrics::MetricRecorder;
+use super::metrics::{Metric, MetricRecorder};
 use super::refine::{self, Lattice};
 use super::{Shard, SweepError};
+use tumble_scenarios::params::Params;
+use tumble_scenarios::scene::{TiltLanes, TiltRun};
 
 /// How to run a sweep.
 #[derive(Debug, Clone, Copy)]
@@ -97,9 +99,97 @@ impl SweepReport {
 #[must_use]
 pub fn run_point(def: &SweepDefinition, index: u64) -> PointRow {
     let values = def.point(index);
+    if let Some(lanes) = def.lanes() {
+        return lane_rows(def, lanes, &[index]).remove(0);
+    }
     guarded(index, values.clone(), def.metrics.len(), || {
         metrics_of(def, &values)
     })
+}
+
+/// Computes points `indices` of `def`, in order: together, several per instruction, where the
+/// sweep runs the reduction's lanes ([`SweepDefinition::lanes`]), else one by one. Each row is
+/// the one [`run_point`] gives for its point alone, bit for bit.
+#[must_use]
+pub fn run_points(def: &SweepDefinition, indices: &[u64]) -> Vec<PointRow> {
+    match def.lanes() {
+        Some(lanes) => indices
+            .chunks(lanes.width.max(1))
+            .flat_map(|chunk| lane_rows(def, lanes, chunk))
+            .collect(),
+        None => indices.iter().map(|&i| run_point(def, i)).collect(),
+    }
+}
+
+/// The points' parameters: the sweep's with the axes at the point's values.
+fn params_at(def: &SweepDefinition, values: &[f64]) -> Result<Params, String> {
+    let mut params = def.params.clone();
+    for (axis, &v) in def.axes.iter().zip(values) {
+        params.set(axis.parameter, v).map_err(|e| e.to_string())?;
+    }
+    Ok(params)
+}
+
+/// The rows of `indices` run in `lanes` together. A panic in a batch runs its points again
+/// one at a time, so that it marks only the point it comes from (the same row as alone).
+fn lane_rows(def: &SweepDefinition, lanes: &TiltLanes, indices: &[u64]) -> Vec<PointRow> {
+    let values: Vec<Vec<f64>> = indices.iter().map(|&i| def.point(i)).collect();
+    let params: Vec<Result<Params, String>> = values.iter().map(|v| params_at(def, v)).collect();
+    let ready: Vec<Params> = params
+        .iter()
+        .filter_map(|p| p.as_ref().ok().cloned())
+        .collect();
+    if let [index] = *indices {
+        let values = values.into_iter().next().unwrap_or_default();
+        return vec![guarded(index, values.clone(), def.metrics.len(), || {
+            let params = params_at(def, &values)?;
+            let run = (lanes.run)(&[params], &def.plan, def.tilt_threshold)
+                .pop()
+                .ok_or_else(|| "the map's lanes returned no run".to_string())?;
+            run.map(|run| tilt_metrics(&def.metrics, &run))
+                .map_err(|e| e.to_string())
+        })];
+    }
+    let runs = catch_unwind(AssertUnwindSafe(|| {
+        (lanes.run)(&ready, &def.plan, def.tilt_threshold)
+    }));
+    let Ok(runs) = runs else {
+        return indices
+            .iter()
+            .flat_map(|&i| lane_rows(def, lanes, &[i]))
+            .collect();
+    };
+    let mut runs = runs.into_iter();
+    indices
+        .iter()
+        .zip(values)
+        .zip(params)
+        .map(|((&index, values), params)| {
+            let result = match params {
+                Err(e) => Err(e),
+                Ok(_) => match runs.next() {
+                    Some(Ok(run)) => Ok(tilt_metrics(&def.metrics, &run)),
+                    Some(Err(e)) => Err(e.to_string()),
+                    None => Err("the map's lanes returned fewer runs than points".to_string()),
+                },
+            };
+            guarded(index, values, def.metrics.len(), || result)
+        })
+        .collect()
+}
+
+/// The sweep's metrics of a run of the lanes, in the sweep's order.
+fn tilt_metrics(metrics: &[Metric], run: &TiltRun) -> Vec<Option<f64>> {
+    metrics
+        .iter()
+        .map(|m| match m {
+            Metric::MaxTilt => Some(run.max_tilt),
+            Metric::FinalTilt => Some(run.final_tilt),
+            Metric::TimeTiltExceeds => run.first_exceeds,
+            Metric::MaxEnergyRelErr => Some(run.max_energy_rel_err),
+            Metric::Column { .. } | Metric::Flips => None,
+        })
+        .collect()
 }
 
 /// The row of point `index` whose metrics `compute` returns: `failed` with its error, or
@@ -137,10 +227,7 @@ pub(crate) fn guarded(
 
 /// Runs the scene at `values` and reduces the run to the definition's metrics.
 fn metrics_of(def: &SweepDefinition, values: &[f64]) -> Result<Vec<Option<f64>>, String> {
-    let mut params = def.params.clone();
-    for (axis, &v) in def.axes.iter().zip(values) {
-        params.set(axis.parameter, v).map_err(|e| e.to_string())?;
-    }
+    let params = params_at(def, values)?;
     // The scene's reduction when it serves every metric, else the scene itself.
     let reduction = def.reduction();
     let columns = reduction.map_or_else(
@@ -172,20 +259,23 @@ fn metrics_of(def: &SweepDefinition, values: &[f64]) -> Result<Vec<Option<f64>>,
     Ok(recorder.finish(&def.metrics, summary.max_energy_rel_err))
 }
 
-/// Computes the `count` points of `pending` on a pool of `threads` workers, handing each row
-/// to `sink` on the calling thread as soon as it is done. The indices are drawn from the
-/// iterator as workers free up, never listed. Stops starting points when `cancel` is set or
+/// Computes the `count` points of `pending` on a pool of `threads` workers, `width` at a time
+/// (consecutive indices of `pending`, handed to `compute` together), handing each row to
+/// `sink` on the calling thread as soon as its batch is done. The indices are drawn from the
+/// iterator as workers free up, never listed. Stops starting batches when `cancel` is set or
 /// `sink` fails (whose error is returned).
 fn execute(
     pending: impl Iterator<Item = u64> + Send,
     count: u64,
     threads: usize,
+    width: usize,
     cancel: Option<&AtomicBool>,
-    compute: &(dyn Fn(u64) -> PointRow + Sync),
+    compute: &(dyn Fn(&[u64]) -> Vec<PointRow> + Sync),
     sink: &mut dyn FnMut(PointRow) -> Result<(), SweepError>,
 ) -> Result<(), SweepError> {
-    // No more workers than points: `--threads 100000` on 6 points starts 6.
-    let threads = clamp_threads(threads, count);
+    let width = width.max(1);
+    // No more workers than batches: `--threads 100000` on 6 points starts 6 (or 1 batch).
+    let threads = clamp_threads(threads, count.div_ceil(width as u64));
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .thread_name(|i| format!("tumble-sweep-{i}"))
@@ -198,14 +288,21 @@ fn execute(
     let stopped =
         || stop.load(Ordering::Relaxed) || cancel.is_some_and(|c| c.load(Ordering::Relaxed));
     let (tx, rx) = mpsc::channel::<PointRow>();
+    let mut pending = pending;
+    let batches = std::iter::from_fn(move || {
+        let batch: Vec<u64> = pending.by_ref().take(width).collect();
+        (!batch.is_empty()).then_some(batch)
+    });
     std::thread::scope(|scope| {
         let stopped = &stopped;
         scope.spawn(move || {
             pool.install(|| {
-                pending.par_bridge().for_each_with(tx, |tx, index| {
+                batches.par_bridge().for_each_with(tx, |tx, batch| {
                     if !stopped() {
-                        // The receiver is gone only after an error; the point is dropped.
-                        let _ = tx.send(compute(index));
+                        for row in compute(&batch) {
+                            // The receiver is gone only after an error; the point is dropped.
+                            let _ = tx.send(row);
+                        }
                     }
                 });
             });
@@ -381,6 +478,8 @@ pub fn run(
         progress(state);
         Ok(Some(row))
     };
+    // Points per batch: the lanes' width where they serve the sweep.
+    let width = def.lanes().map_or(1, |l| l.width);
     let (result, total) = if let Some(lattice) = Lattice::of(def) {
         // Level by level: each level's points depend on the previous levels' results.
         progress(&state);
@@ -398,8 +497,9 @@ pub fn run(
                     missing.iter().copied(),
                     missing.len() as u64,
                     config.threads,
+                    width,
                     config.cancel,
-                    &|index| run_point(def, index),
+                    &|indices| run_points(def, indices),
                     &mut |row| {
                         if let Some(row) =
                             record(row, &mut state, &mut tally, &mut writer, &mut *progress)?
@@ -434,8 +534,9 @@ pub fn run(
             pending,
             count,
             config.threads,
+            width,
             config.cancel,
-            &|index| run_point(def, index),
+            &|indices| run_points(def, indices),
             &mut |row| {
                 fresh.extend(record(
                     row,
@@ -500,25 +601,32 @@ mod tests {
         }
     }
 
+    fn rows(batch: &[u64]) -> Vec<PointRow> {
+        batch.iter().map(|&i| row(i)).collect()
+    }
+
     #[test]
-    fn every_point_reaches_the_sink_once_whatever_the_threads() {
+    fn every_point_reaches_the_sink_once_whatever_the_threads_and_batch_width() {
         let pending: Vec<u64> = (0..50).collect();
         for threads in [1, 2, 3] {
-            let mut seen = Vec::new();
-            execute(
-                pending.iter().copied(),
-                pending.len() as u64,
-                threads,
-                None,
-                &row,
-                &mut |r| {
-                    seen.push(r.index);
-                    Ok(())
-                },
-            )
-            .unwrap();
-            seen.sort_unstable();
-            assert_eq!(seen, pending, "{threads} threads");
+            for width in [1, 3, 8, 64] {
+                let mut seen = Vec::new();
+                execute(
+                    pending.iter().copied(),
+                    pending.len() as u64,
+                    threads,
+                    width,
+                    None,
+                    &rows,
+                    &mut |r| {
+                        seen.push(r.index);
+                        Ok(())
+                    },
+                )
+                .unwrap();
+                seen.sort_unstable();
+                assert_eq!(seen, pending, "{threads} threads, batches of {width}");
+            }
         }
     }
 
@@ -526,14 +634,22 @@ mod tests {
     fn a_failing_sink_stops_the_workers_and_returns_its_error() {
         let pending: Vec<u64> = (0..1000).collect();
         let mut n = 0;
-        let e = execute(pending.iter().copied(), 1000, 2, None, &row, &mut |_| {
-            n += 1;
-            if n == 3 {
-                Err(SweepError::Merge("disk full".into()))
-            } else {
-                Ok(())
-            }
-        })
+        let e = execute(
+            pending.iter().copied(),
+            1000,
+            2,
+            1,
+            None,
+            &rows,
+            &mut |_| {
+                n += 1;
+                if n == 3 {
+                    Err(SweepError::Merge("disk full".into()))
+                } else {
+                    Ok(())
+                }
+            },
+        )
         .unwrap_err();
         assert!(e.to_string().contains("disk full"));
         assert_eq!(n, 3);
@@ -544,13 +660,14 @@ mod tests {
         let pending: Vec<u64> = (0..200).collect();
         let cancel = AtomicBool::new(false);
         let mut seen = 0;
-        let slow = |i| {
+        let slow = |b: &[u64]| {
             std::thread::sleep(Duration::from_millis(2));
-            row(i)
+            rows(b)
         };
         execute(
             pending.iter().copied(),
             200,
+            1,
             1,
             Some(&cancel),
             &slow,
@@ -564,5 +681,68 @@ mod tests {
         )
         .unwrap();
         assert!((5..200).contains(&seen), "{seen}");
+    }
+
+    /// The built-in map runs in lanes, and its rows are the same bits whatever the batch:
+    /// points alone, in batches of the lanes' width, of 3, and in another order.
+    #[test]
+    fn the_maps_rows_do_not_depend_on_the_batch() {
+        let def = SweepDefinition::tilt_map(&[]).unwrap();
+        let lanes = def.lanes().expect("the built-in map runs in lanes");
+        let indices: Vec<u64> = (0..def.points()).step_by(1171).collect();
+        assert!(indices.len() > lanes.width);
+        let alone: Vec<PointRow> = indices.iter().map(|&i| run_point(&def, i)).collect();
+        let key = |rows: &[PointRow]| -> Vec<(u64, Vec<Option<u64>>, Status)> {
+            rows.iter()
+                .map(|r| {
+                    let bits = r.metrics.iter().map(|m| m.map(f64::to_bits)).collect();
+                    (r.index, bits, r.status)
+                })
+                .collect()
+        };
+        assert!(alone.iter().all(|r| r.status == Status::Ok));
+        assert_eq!(key(&run_points(&def, &indices)), key(&alone));
+        let threes: Vec<PointRow> = indices
+            .chunks(3)
+            .flat_map(|c| run_points(&def, c))
+            .collect();
+        assert_eq!(key(&threes), key(&alone));
+        let reversed: Vec<u64> = indices.iter().rev().copied().collect();
+        let mut back = run_points(&def, &reversed);
+        back.reverse();
+        assert_eq!(key(&back), key(&alone));
+    }
+
+    /// The lanes' metrics are those of the scalar run with its rows (a metric the lanes do not
+    /// report, `max:alpha`, sends the same sweep down the scalar path): the final tilt and the
+    /// energy error bit for bit (the same steps), the largest tilt and the first crossing to
+    /// 1e-12 (located on the same polynomials, by root-finding or by the rows' quartic fits).
+    #[test]
+    fn the_lanes_metrics_are_the_scalar_runs() {
+        let def = SweepDefinition::tilt_map(&[]).unwrap();
+        let mut scalar = def.clone();
+        scalar.metrics.push(Metric::parse("max:alpha").unwrap());
+        assert!(def.lanes().is_some() && scalar.lanes().is_none());
+        let mut crossings = 0;
+        for i in (0..def.points()).step_by(997) {
+            let (a, b) = (run_point(&def, i), run_point(&scalar, i));
+            assert_eq!((a.status, b.status), (Status::Ok, Status::Ok), "point {i}");
+            for (k, m) in def.metrics.iter().enumerate() {
+                let (x, y) = (a.metrics[k], b.metrics[k]);
+                match m {
+                    Metric::FinalTilt | Metric::MaxEnergyRelErr => {
+                        assert_eq!(x.map(f64::to_bits), y.map(f64::to_bits), "{m:?} at {i}");
+                    }
+                    _ => match (x, y) {
+                        (Some(x), Some(y)) => {
+                            assert!((x - y).abs() <= 1e-12, "{m:?} at {i}: {x} vs {y}");
+                            crossings += usize::from(*m == Metric::TimeTiltExceeds);
+                        }
+                        (x, y) => assert_eq!(x, y, "{m:?} at {i}"),
+                    },
+                }
+            }
+        }
+        assert!(crossings >= 3, "{crossings}");
     }
 }
