@@ -179,6 +179,11 @@ struct Batch {
     x: Vec<V>,
     /// The intermediate series, likewise.
     aux: Vec<V>,
+    /// The widest SIMD instructions of this CPU, found once: the recursions and sums are
+    /// compiled for each and run with the widest (the same numbers, lane by lane: each
+    /// instruction set does element-wise IEEE arithmetic, and none fuses a multiply and an
+    /// add unless asked to).
+    arch: pulp::Arch,
 }
 
 impl Batch {
@@ -194,6 +199,7 @@ impl Batch {
             len,
             x: vec![[0.0; LANES]; N * len],
             aux: vec![[0.0; LANES]; AUX * len],
+            arch: pulp::Arch::new(),
         }
     }
 
@@ -253,9 +259,18 @@ impl Batch {
             c.k[l] = c.k[0];
             state[l] = state[0];
         }
+        // The step each lane takes in this round (NaN: none) and whether it is its last.
+        let mut step_of = [f64::NAN; LANES];
+        let mut last_of = [false; LANES];
         while lanes.contains(&Lane::Running) {
             // The coefficients at every lane's point (a stopped lane's are not read).
-            self.expand(&c, &state, p);
+            let arch = self.arch;
+            arch.dispatch(Expand {
+                batch: self,
+                c: &c,
+                state: &state,
+                p,
+            });
             let elapsed = plan.deadline.map(|_| started.elapsed().as_secs_f64());
             for l in 0..LANES {
                 if lanes[l] != Lane::Running {
@@ -318,23 +333,40 @@ impl Batch {
                 if last {
                     step = t_end - t[l];
                 }
-                let before = state[l];
-                self.sum(l, p, step, &mut state[l]);
-                if state[l].iter().any(|v| !v.is_finite()) {
-                    errors[l] = fail(IntegrationError::NonFinite {
+                step_of[l] = step;
+                last_of[l] = last;
+            }
+            // Every stepping lane's state at the end of its step, and Γ_z' at the sampling
+            // points of its step, all lanes at once (a lane that does not step is not read).
+            let (ends, slopes) = arch.dispatch(Ends {
+                batch: self,
+                p,
+                step: &step_of,
+            });
+            for l in 0..LANES {
+                let step = step_of[l];
+                if lanes[l] != Lane::Running || step.is_nan() {
+                    continue;
+                }
+                step_of[l] = f64::NAN;
+                let end: [f64; N] = std::array::from_fn(|i| ends[i][l]);
+                if end.iter().any(|v| !v.is_finite()) {
+                    errors[l] = Some(SceneError::Integration(IntegrationError::NonFinite {
                         t: t[l],
                         h: step,
-                        state: before.to_vec(),
-                    });
+                        state: state[l].to_vec(),
+                    }));
                     lanes[l] = Lane::Failed;
                     continue;
                 }
+                state[l] = end;
                 steps[l] += 1;
-                let t_next = if last { t_end } else { t[l] + step };
+                let t_next = if last_of[l] { t_end } else { t[l] + step };
                 let eq = &members[l].0;
-                metrics[l].step(self, l, p, t[l], step, eq, &State::from(state[l]));
+                let slope: [f64; SAMPLES + 1] = std::array::from_fn(|i| slopes[i][l]);
+                metrics[l].step(self, l, p, t[l], step, &slope, eq, &State::from(end));
                 t[l] = t_next;
-                if last {
+                if last_of[l] {
                     lanes[l] = Lane::Done;
                 }
             }
@@ -351,6 +383,7 @@ impl Batch {
 
     /// The normalized Taylor coefficients of every lane's solution through its state, orders
     /// `0 ..= p` ([`super::TaylorHoop`]'s recursions, lane by lane, in its order of operations).
+    #[inline(always)]
     fn expand(&mut self, c: &Constants, state: &[[f64; N]; LANES], p: usize) {
         let len = self.len;
         let (x, aux) = (&mut self.x, &mut self.aux);
@@ -472,11 +505,38 @@ impl Batch {
         (0..N).fold(0.0f64, |m, i| m.max(self.x[i * self.len + j][l].abs()))
     }
 
-    /// Lane `l`'s state at `τ` from its point: `Σₖ xₖ τᵏ` (Horner, as the scalar method sums).
-    fn sum(&self, l: usize, p: usize, tau: f64, out: &mut [f64; N]) {
-        for (i, o) in out.iter_mut().enumerate() {
-            *o = self.poly(l, i, p, tau);
-        }
+    /// Every lane's state at `τ` from its point, `Σₖ xₖ τᵏ` (Horner, as the scalar method
+    /// sums): `[component][lane]`. A NaN `τ` gives NaN.
+    #[inline(always)]
+    fn sum(&self, p: usize, tau: &V) -> [V; N] {
+        std::array::from_fn(|i| {
+            let x = &self.x[i * self.len..];
+            let mut s = x[p];
+            for xk in x[..p].iter().rev() {
+                for l in 0..LANES {
+                    s[l] = s[l] * tau[l] + xk[l];
+                }
+            }
+            s
+        })
+    }
+
+    /// `Γ_z'` of every lane at the [`SAMPLES`] + 1 points `τᵢ = i h / SAMPLES` of its step
+    /// `h` (Horner on `k xₖ`): `[point][lane]`.
+    #[inline(always)]
+    fn slopes(&self, p: usize, h: &V) -> [V; SAMPLES + 1] {
+        let x = &self.x[2 * self.len..];
+        std::array::from_fn(|i| {
+            let tau: V = std::array::from_fn(|l| node(h[l], i));
+            let mut d = [0.0; LANES];
+            for k in (1..=p).rev() {
+                let kf = k as f64;
+                for l in 0..LANES {
+                    d[l] = d[l] * tau[l] + kf * x[k][l];
+                }
+            }
+            d
+        })
     }
 
     /// Component `i` of lane `l` at `τ` (Horner).
@@ -509,6 +569,51 @@ impl Batch {
             self.poly(l, 1, p, tau),
             self.poly(l, 2, p, tau),
         )
+    }
+}
+
+/// [`Batch::expand`] compiled for the instruction set `pulp` finds (inlined into its
+/// target-feature function: a closure would be compiled once, for the baseline).
+struct Expand<'a> {
+    batch: &'a mut Batch,
+    c: &'a Constants,
+    state: &'a [[f64; N]; LANES],
+    p: usize,
+}
+
+impl pulp::WithSimd for Expand<'_> {
+    type Output = ();
+    #[inline(always)]
+    fn with_simd<S: pulp::Simd>(self, _: S) {
+        self.batch.expand(self.c, self.state, self.p);
+    }
+}
+
+/// [`Batch::sum`] and [`Batch::slopes`] likewise.
+struct Ends<'a> {
+    batch: &'a Batch,
+    p: usize,
+    step: &'a V,
+}
+
+impl pulp::WithSimd for Ends<'_> {
+    type Output = ([V; N], [V; SAMPLES + 1]);
+    #[inline(always)]
+    fn with_simd<S: pulp::Simd>(self, _: S) -> Self::Output {
+        (
+            self.batch.sum(self.p, self.step),
+            self.batch.slopes(self.p, self.step),
+        )
+    }
+}
+
+/// Sampling point `i` of a step `h`: `i h / SAMPLES`, the end exactly `h`.
+#[inline]
+fn node(h: f64, i: usize) -> f64 {
+    if i == SAMPLES {
+        h
+    } else {
+        h * i as f64 / SAMPLES as f64
     }
 }
 
@@ -570,6 +675,7 @@ impl Track {
         p: usize,
         t: f64,
         h: f64,
+        slope: &[f64; SAMPLES + 1],
         eq: &EulerPoissonHoop,
         y: &State,
     ) {
@@ -580,24 +686,15 @@ impl Track {
         self.max_rel = self.max_rel.max(rel);
         // Sample Γ_z' for sign changes; each is an extremum of Γ_z, a candidate for the
         // largest |Γ_z|. Candidates in increasing τ, the step's end last.
-        let node = |i: usize| {
-            if i == SAMPLES {
-                h
-            } else {
-                h * i as f64 / SAMPLES as f64
-            }
-        };
         let mut points = [(0.0, 0.0); SAMPLES + 1];
         let mut count = 0;
-        let mut before = batch.slope(l, p, 0.0).0;
         for i in 1..=SAMPLES {
-            let now = batch.slope(l, p, node(i)).0;
+            let (before, now) = (slope[i - 1], slope[i]);
             if (before > 0.0 && now < 0.0) || (before < 0.0 && now > 0.0) {
-                let root = extremum(batch, l, p, node(i - 1), node(i), before);
+                let root = extremum(batch, l, p, node(h, i - 1), node(h, i), before);
                 points[count] = (root, batch.tilt(l, p, root));
                 count += 1;
             }
-            before = now;
         }
         points[count] = (h, EulerPoissonHoop::tilt(y[0], y[1], y[2]));
         count += 1;
