@@ -23,8 +23,8 @@ pub use plan::{
 };
 pub(crate) use rows::RowObserver;
 pub use rows::{
-    continuous_quaternion, energy_scale, relative_energy_error, run_hamiltonian, run_taylor_vector,
-    run_vector,
+    continuous_quaternion, energy_scale, relative_energy_error, run_coupled_rows, run_hamiltonian,
+    run_rigid_rows, run_taylor_vector, run_vector,
 };
 
 /// What a scene documents.
