@@ -237,6 +237,7 @@ impl ModelScene {
             } else {
                 Box::leak(rate_names.into_boxed_slice())
             },
+            not_on_group: on_group.as_ref().err().map_or("", |why| leak(why.clone())),
         }));
         ModelScene {
             info,

@@ -64,6 +64,11 @@ pub struct SceneInfo {
     /// reported as a quaternion and its rates as the body angular velocity); empty: the
     /// coordinates with `_dot`.
     pub rate_names: &'static [&'static str],
+    /// Why its model offers none of the Lie-group kinds of problem (rigid-body,
+    /// free-rigid-body, lie-vector-field, coupled-rigid-body): added to the refusal of a method
+    /// that needs one (a model without an orientation on SO(3)); empty where nothing needs
+    /// saying.
+    pub not_on_group: &'static str,
 }
 
 impl SceneInfo {
