@@ -429,8 +429,13 @@ impl<'a> ModelRigidBody<'a> {
     /// triangle inequality).
     pub(crate) fn new(group: &'a Group, template: &[f64]) -> Result<Self, String> {
         let eval = Evaluator::new(group, template);
+        // Symmetric, and products of inertia at the round-off of the largest entry (a mesh's
+        // sums leave some ~1e-19 where the body is symmetric) set to zero: a diagonal tensor's
+        // principal axes are then exact, as the built-in bodies' are.
         let j = eval.blocks::<0>(&SVector::zeros()).rotational;
-        let body = FreeRigidBody::from_inertia(&((j + j.transpose()) * 0.5))
+        let noise = 64.0 * f64::EPSILON * j.amax();
+        let j = ((j + j.transpose()) * 0.5).map(|x| if x.abs() <= noise { 0.0 } else { x });
+        let body = FreeRigidBody::from_inertia(&j)
             .map_err(|e| format!("its inertia {j} is not a rigid body's: {e}"))?;
         // Torque-free when the potential and its moment vanish at every sample rotation.
         let mut samples = Samples(std::f64::consts::FRAC_1_PI);
