@@ -257,7 +257,7 @@ impl<'a> Evaluator<'a> {
         KineticBlocks {
             rotational: Matrix3::from_fn(|a, b| m(N + a, N + b)),
             coupling: SMatrix::<f64, 3, N>::from_fn(|a, i| m(N + a, i)),
-            internal: SMatrix::<f64, N, N>::from_fn(|i, j| m(i, j)),
+            internal: SMatrix::<f64, N, N>::from_fn(m),
         }
     }
 
@@ -372,7 +372,7 @@ impl<const N: usize> CoupledLagrangian<N> for ModelCoupled<'_, N> {
         KineticBlocks {
             rotational: Matrix3::from_fn(|a, b| m(N + a, N + b)),
             coupling: SMatrix::<D, 3, N>::from_fn(|a, i| m(N + a, i)),
-            internal: SMatrix::<D, N, N>::from_fn(|i, j| m(i, j)),
+            internal: SMatrix::<D, N, N>::from_fn(m),
         }
     }
 
