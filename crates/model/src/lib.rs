@@ -8,6 +8,7 @@
 pub mod drawing;
 pub mod expr;
 pub mod file;
+pub mod group;
 pub mod mechanics;
 pub mod scene;
 pub mod taylor;

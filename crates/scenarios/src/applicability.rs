@@ -74,6 +74,16 @@ impl SceneInfo {
                     .iter()
                     .map(|b| format!("{name}:{b}"))
                     .collect();
+                let on_group = [
+                    ProblemKind::RigidBody,
+                    ProblemKind::FreeRigidBody,
+                    ProblemKind::LieVectorField,
+                    ProblemKind::CoupledRigidBody,
+                ];
+                if !self.not_on_group.is_empty() && m.problems.iter().all(|k| on_group.contains(k))
+                {
+                    why += &format!("; {}", self.not_on_group);
+                }
                 if m.family == Family::Composition
                     && registry::composed(name).is_none()
                     && !bases.is_empty()

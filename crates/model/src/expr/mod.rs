@@ -91,6 +91,37 @@ impl Fun {
         ("sign", Fun::Sign),
     ];
 
+    /// Its value at `x` in any real scalar (as [`Fun::apply`] for `f64`; for dual numbers
+    /// with the derivatives of the function, `sign` having none).
+    #[must_use]
+    pub fn apply_real<D: nalgebra::RealField + Copy + From<f64>>(self, x: D) -> D {
+        match self {
+            Fun::Sqrt => x.sqrt(),
+            Fun::Sin => x.sin(),
+            Fun::Cos => x.cos(),
+            Fun::Tan => x.tan(),
+            Fun::Asin => x.asin(),
+            Fun::Acos => x.acos(),
+            Fun::Atan => x.atan(),
+            Fun::Sinh => x.sinh(),
+            Fun::Cosh => x.cosh(),
+            Fun::Tanh => x.tanh(),
+            Fun::Exp => x.exp(),
+            Fun::Log => x.ln(),
+            Fun::Abs => x.abs(),
+            Fun::Sign => {
+                let zero = D::from(0.0);
+                if x > zero {
+                    D::from(1.0)
+                } else if x < zero {
+                    D::from(-1.0)
+                } else {
+                    x * zero
+                }
+            }
+        }
+    }
+
     /// Its value at `x`.
     #[must_use]
     pub fn apply(self, x: f64) -> f64 {

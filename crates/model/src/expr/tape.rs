@@ -217,6 +217,35 @@ impl Tape {
         self.run(w);
     }
 
+    /// Every output at `inputs` (`inputs[k]` for input `k`, missing ones zero) in any real
+    /// scalar: `f64`, or the dual numbers of `num-dual`, whose derivatives then come by
+    /// automatic differentiation through the same instructions. Allocates its workspace on
+    /// each call: for checks and generic callers, not for a step (use [`Tape::run`]).
+    #[must_use]
+    pub fn eval<D: nalgebra::RealField + Copy + From<f64>>(&self, inputs: &[D]) -> Vec<D> {
+        let zero = D::from(0.0);
+        let mut w = vec![zero; self.slots];
+        let n = self.inputs.min(inputs.len());
+        w[..n].copy_from_slice(&inputs[..n]);
+        for ins in self.prelude.iter().chain(&self.body) {
+            let x = w[ins.a as usize];
+            let y = w[ins.b as usize];
+            w[ins.dst as usize] = match ins.op {
+                Op::Const(c) => D::from(c),
+                Op::Add => x + y,
+                Op::Sub => x - y,
+                Op::Mul => x * y,
+                Op::Div => x / y,
+                Op::Neg => -x,
+                Op::Powi(m) => x.powi(m),
+                Op::Pow => x.powf(y),
+                Op::Atan2 => x.atan2(y),
+                Op::Call(f) => f.apply_real(x),
+            };
+        }
+        self.outputs.iter().map(|&o| w[o as usize]).collect()
+    }
+
     /// Output `i` after a run.
     #[must_use]
     #[inline]

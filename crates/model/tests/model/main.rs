@@ -4,6 +4,7 @@
 mod drawing;
 mod expr;
 mod fuzz;
+mod lie;
 mod models;
 mod native;
 mod so3;

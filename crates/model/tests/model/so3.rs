@@ -21,7 +21,7 @@ fn difference(a: &[f64], b: &[f64]) -> f64 {
 
 /// Every column the two runs share (the state shown as quaternions and body angular
 /// velocities, the energy, the tilt) agrees to `tol`.
-fn twins(builtin: &str, model: &str, integrator: &str, dt: f64, t_end: f64, tol: f64) {
+pub(crate) fn twins(builtin: &str, model: &str, integrator: &str, dt: f64, t_end: f64, tol: f64) {
     let step = StepControl::Fixed(dt);
     let (bc, br) = run(find(builtin).unwrap(), &[], integrator, step, t_end);
     let (mc, mr) = run(shipped(model), &[], integrator, step, t_end);

@@ -23,8 +23,8 @@ pub use plan::{
 };
 pub(crate) use rows::RowObserver;
 pub use rows::{
-    continuous_quaternion, energy_scale, relative_energy_error, run_hamiltonian, run_taylor_vector,
-    run_vector,
+    continuous_quaternion, energy_scale, relative_energy_error, run_coupled_rows, run_hamiltonian,
+    run_rigid_rows, run_taylor_vector, run_vector,
 };
 
 /// What a scene documents.
@@ -64,6 +64,11 @@ pub struct SceneInfo {
     /// reported as a quaternion and its rates as the body angular velocity); empty: the
     /// coordinates with `_dot`.
     pub rate_names: &'static [&'static str],
+    /// Why its model offers none of the Lie-group kinds of problem (rigid-body,
+    /// free-rigid-body, lie-vector-field, coupled-rigid-body): added to the refusal of a method
+    /// that needs one (a model without an orientation on SO(3)); empty where nothing needs
+    /// saying.
+    pub not_on_group: &'static str,
 }
 
 impl SceneInfo {

@@ -3,6 +3,9 @@
 //! and the runners of a scene's model through [`dispatch`].
 
 use nalgebra::SVector;
+use tumble_integrators::rigid::{
+    CoupledLagrangian, CoupledState, FreeRigidBody, RigidBody, RigidBodyState,
+};
 use tumble_integrators::{
     DenseStep, Event, Flow, Observer, Ode, SeparableHamiltonian, TaylorSystem,
 };
@@ -301,5 +304,58 @@ where
     let mut y = y0;
     let mut observer = RowObserver::new(columns, energy_column, plan, row, recorder);
     let outcome = dispatch::run_separable(model, &mut y, plan, &mut observer)?;
+    observer.summary(&outcome)
+}
+
+/// Runs a rigid body on SO(3) ([`ProblemKind::RigidBody`], [`ProblemKind::LieVectorField`],
+/// and with `free` — the same body when it is torque-free — [`ProblemKind::FreeRigidBody`])
+/// with the plan's method through [`dispatch::run_rigid_body`], from `s0`, turning states into
+/// rows as [`run_vector`] does.
+///
+/// [`ProblemKind::RigidBody`]: tumble_integrators::ProblemKind::RigidBody
+/// [`ProblemKind::LieVectorField`]: tumble_integrators::ProblemKind::LieVectorField
+/// [`ProblemKind::FreeRigidBody`]: tumble_integrators::ProblemKind::FreeRigidBody
+#[allow(clippy::too_many_arguments)]
+pub fn run_rigid_rows<B, F>(
+    body: &B,
+    free: Option<&FreeRigidBody>,
+    s0: RigidBodyState,
+    plan: &RunPlan,
+    columns: usize,
+    energy_column: usize,
+    row: F,
+    recorder: &mut dyn Recorder,
+) -> Result<RunSummary, SceneError>
+where
+    B: RigidBody,
+    F: FnMut(f64, &RigidBodyState, &mut [f64]),
+{
+    let mut state = s0;
+    let mut observer = RowObserver::new(columns, energy_column, plan, row, recorder);
+    let outcome = dispatch::run_rigid_body(&body, free, &mut state, plan, &mut observer)?;
+    observer.summary(&outcome)
+}
+
+/// Runs a rigid body coupled to `N` coordinates ([`ProblemKind::CoupledRigidBody`]) with the
+/// plan's method through [`dispatch::run_coupled`], from `s0`, turning states into rows as
+/// [`run_vector`] does.
+///
+/// [`ProblemKind::CoupledRigidBody`]: tumble_integrators::ProblemKind::CoupledRigidBody
+pub fn run_coupled_rows<L, F, const N: usize>(
+    model: &L,
+    s0: CoupledState<N>,
+    plan: &RunPlan,
+    columns: usize,
+    energy_column: usize,
+    row: F,
+    recorder: &mut dyn Recorder,
+) -> Result<RunSummary, SceneError>
+where
+    L: CoupledLagrangian<N>,
+    F: FnMut(f64, &CoupledState<N>, &mut [f64]),
+{
+    let mut state = s0;
+    let mut observer = RowObserver::new(columns, energy_column, plan, row, recorder);
+    let outcome = dispatch::run_coupled(model, &mut state, plan, &mut observer)?;
     observer.summary(&outcome)
 }

@@ -121,6 +121,7 @@ pub static FREE_BODY_FILE: SceneInfo = SceneInfo {
     default_t_end: 20.0,
     diagnostics: &["energy", "energy_rel_err", "Lx", "Ly", "Lz", "exact_err"],
     rate_names: &["omega_x", "omega_y", "omega_z"],
+    not_on_group: "",
 };
 
 /// `dzhanibekov` with a body from a scene file.
@@ -151,6 +152,7 @@ pub static HEAVY_TOP_FILE: SceneInfo = SceneInfo {
     default_t_end: 10.0,
     diagnostics: &["energy", "energy_rel_err", "Lx", "Ly", "Lz"],
     rate_names: &["omega_x", "omega_y", "omega_z"],
+    not_on_group: "",
 };
 
 /// Which rigid-body scene a `[body]` table feeds.

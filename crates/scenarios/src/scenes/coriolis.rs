@@ -136,6 +136,7 @@ pub static CORIOLIS_DROP: SceneInfo = SceneInfo {
     default_t_end: 60.0,
     diagnostics: &["energy", "energy_rel_err"],
     rate_names: &[],
+    not_on_group: "",
 };
 
 /// Which method for what on `coriolis-drop`; the measurements behind it are data

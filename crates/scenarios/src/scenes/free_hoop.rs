@@ -396,6 +396,7 @@ pub static FREE_HOOP: SceneInfo = SceneInfo {
     default_t_end: 10.0,
     diagnostics: &["energy", "energy_rel_err", "Lx", "Ly", "Lz", "tilt"],
     rate_names: &["omega_x", "omega_y", "omega_z", "alpha_dot"],
+    not_on_group: "",
 };
 
 /// Which method for what on `free-hoop`; the measurements behind it are data

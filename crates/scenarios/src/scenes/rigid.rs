@@ -271,6 +271,7 @@ pub static FREE_BODY: SceneInfo = SceneInfo {
     default_t_end: 20.0,
     diagnostics: &["energy", "energy_rel_err", "Lx", "Ly", "Lz", "exact_err"],
     rate_names: &["omega_x", "omega_y", "omega_z"],
+    not_on_group: "",
 };
 
 /// Which method for what on `free-body`; the measurements behind it are data
@@ -468,6 +469,7 @@ pub static DZHANIBEKOV: SceneInfo = SceneInfo {
     default_t_end: 10.0,
     diagnostics: &["energy", "energy_rel_err", "Lx", "Ly", "Lz", "exact_err"],
     rate_names: &["omega_x", "omega_y", "omega_z"],
+    not_on_group: "",
 };
 
 /// Which method for what on `dzhanibekov`; the measurements behind it are data
@@ -635,6 +637,7 @@ pub static HEAVY_TOP: SceneInfo = SceneInfo {
     default_t_end: 10.0,
     diagnostics: &["energy", "energy_rel_err", "Lx", "Ly", "Lz"],
     rate_names: &["omega_x", "omega_y", "omega_z"],
+    not_on_group: "",
 };
 
 /// Which method for what on `heavy-top`; the measurements behind it are data

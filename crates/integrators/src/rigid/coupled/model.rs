@@ -87,6 +87,20 @@ pub trait CoupledLagrangian<const N: usize> {
     /// The potential `V(R, q)`; `R` maps body to space components.
     fn potential<D: Scalar>(&self, rotation: &Matrix3<D>, q: &SVector<D, N>) -> D;
 
+    /// The blocks at `q` in `f64` (default: [`Self::kinetic`]): what the Legendre transform
+    /// of a step ([`coupled_velocities`]) and the energy use. A model whose generic
+    /// [`Self::kinetic`] is costly in `f64` (an interpreted expression allocating its
+    /// workspace) gives an allocation-free evaluation here.
+    fn kinetic_blocks(&self, q: &SVector<f64, N>) -> KineticBlocks<f64, N> {
+        self.kinetic(q)
+    }
+
+    /// `V(R, q)` in `f64` (default: [`Self::potential`]), for the energy; overridden for the
+    /// same reason as [`Self::kinetic_blocks`].
+    fn potential_value(&self, rotation: &Matrix3<f64>, q: &SVector<f64, N>) -> f64 {
+        self.potential(rotation, q)
+    }
+
     /// The blocks at `q` and their first derivatives (default: one evaluation of
     /// [`Self::kinetic`] in first-order dual numbers).
     fn kinetic_jet(&self, q: &SVector<f64, N>) -> KineticJet<N> {
@@ -281,7 +295,7 @@ pub fn coupled_velocities<L: CoupledLagrangian<N> + ?Sized, const N: usize>(
     momentum: &Vector3<f64>,
     p: &SVector<f64, N>,
 ) -> Result<(Vector3<f64>, SVector<f64, N>), Error> {
-    velocities_of(&model.kinetic(q), q, momentum, p)
+    velocities_of(&model.kinetic_blocks(q), q, momentum, p)
 }
 
 /// [`coupled_velocities`] for the blocks at `q`.
@@ -321,7 +335,7 @@ pub fn coupled_state_from_velocities<L: CoupledLagrangian<N> + ?Sized, const N: 
     q: &SVector<f64, N>,
     qdot: &SVector<f64, N>,
 ) -> CoupledState<N> {
-    let blocks = model.kinetic(q);
+    let blocks = model.kinetic_blocks(q);
     let (_, momentum, p) = kinetic_terms(&blocks, omega, qdot);
     CoupledState {
         rotation: *rotation,
@@ -341,5 +355,5 @@ pub fn coupled_energy<L: CoupledLagrangian<N> + ?Sized, const N: usize>(
 ) -> Result<f64, Error> {
     let (omega, qdot) = coupled_velocities(model, &state.q, &state.momentum, &state.p)?;
     Ok(0.5 * (omega.dot(&state.momentum) + qdot.dot(&state.p))
-        + model.potential(&state.rotation, &state.q))
+        + model.potential_value(&state.rotation, &state.q))
 }

@@ -111,6 +111,7 @@ pub static DRIVEN_HOOP: SceneInfo = SceneInfo {
     default_t_end: 10.0,
     diagnostics: &["energy", "energy_rel_err", "Lx", "Ly", "Lz", "tilt"],
     rate_names: &[],
+    not_on_group: "",
 };
 
 /// Which method for what on `driven-hoop`; the measurements behind it are data
@@ -247,6 +248,7 @@ pub static SPINNING_HOOP: SceneInfo = SceneInfo {
     default_t_end: 10.0,
     diagnostics: &["energy", "energy_rel_err", "Lx", "Ly", "Lz", "tilt"],
     rate_names: &[],
+    not_on_group: "",
 };
 
 /// Which method for what on `spinning-hoop`; the measurements behind it are data
