@@ -41,8 +41,8 @@ use tumble_output::table::Format;
 use super::args::{parse_angle, parse_set};
 use crate::manifest::{self, SweepManifest};
 use crate::output;
-use crate::plot;
 use crate::signals;
+use tumble_plot as plot;
 use tumble_studies::simulation::{self, Naming};
 
 /// Flags of `tumble sweep`.

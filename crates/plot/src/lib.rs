@@ -19,7 +19,6 @@
 //!   grid of two parameters with a colour bar (the sweep's map) and [`slices`] its rows as
 //!   line series.
 
-pub mod animation;
 pub mod atlas;
 pub mod colour;
 pub mod heatmap;
@@ -27,6 +26,7 @@ pub mod labels;
 pub mod legend;
 pub mod log_axis;
 pub mod options;
+pub mod saved;
 pub mod slices;
 pub mod sweep;
 pub mod text;
@@ -44,14 +44,14 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::{FontStyle, register_font};
 
-use crate::output;
 pub use options::FigureOptions;
+use tumble_output as output;
 
 /// The font family every figure uses; [`register_fonts`] binds it to the shipped font.
 pub const FONT: &str = "sans-serif";
 
 /// DejaVu Sans, compiled in (licence: `assets/fonts/LICENSE-DejaVu.txt`).
-static DEJAVU_SANS: &[u8] = include_bytes!("../../assets/fonts/DejaVuSans.ttf");
+static DEJAVU_SANS: &[u8] = include_bytes!("../assets/fonts/DejaVuSans.ttf");
 
 /// Registers the shipped font as the [`FONT`] family (normal, bold, oblique and italic styles
 /// all fall back to it). Idempotent; [`save`] calls it.
