@@ -179,6 +179,8 @@ pub(crate) fn simulate<'py>(
     out.set_item("data", f64_bytes(py, &data))?;
     out.set_item("rows", summary.rows)?;
     out.set_item("scene", info.name)?;
+    out.set_item("coordinates", info.coordinates)?;
+    out.set_item("rates", tumble_studies::simulation::rate_columns(info))?;
     out.set_item("origin", origin)?;
     out.set_item(
         "frame",

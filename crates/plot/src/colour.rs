@@ -117,6 +117,19 @@ impl ColourMap {
         ColourMap::Grey,
     ];
 
+    /// The map of a name as the command line writes it (`viridis`, `cividis`, `magma`,
+    /// `grey`).
+    #[must_use]
+    pub fn from_name(name: &str) -> Option<Self> {
+        match name {
+            "viridis" => Some(ColourMap::Viridis),
+            "cividis" => Some(ColourMap::Cividis),
+            "magma" => Some(ColourMap::Magma),
+            "grey" => Some(ColourMap::Grey),
+            _ => None,
+        }
+    }
+
     /// The colour at `x ∈ [0, 1]` (clamped; NaN gives the low end).
     #[must_use]
     pub fn at(self, x: f64) -> RGBColor {
@@ -182,6 +195,12 @@ mod tests {
             assert_eq!(map.at(2.0), map.at(1.0));
         }
         assert_eq!(ColourMap::Grey.at(0.5), RGBColor(0x73, 0x73, 0x73));
+        for (name, map) in ["viridis", "cividis", "magma", "grey"]
+            .iter()
+            .zip(ColourMap::ALL)
+        {
+            assert_eq!(ColourMap::from_name(name), Some(map));
+        }
         assert_eq!(ColourMap::Cividis.at(0.0), RGBColor(0x00, 0x22, 0x4e));
     }
 
