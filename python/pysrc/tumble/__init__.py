@@ -243,7 +243,7 @@ def simulate(
     *,
     every: Optional[int] = None,
     output_dt: Optional[float] = None,
-    max_steps: int = 1_000_000_000,
+    max_steps: Optional[int] = None,
     allow_coarse_step: bool = False,
     check: bool = True,
 ) -> Simulation:
@@ -256,7 +256,8 @@ def simulate(
     file's) values. ``integrator``, ``dt`` (fixed step) or ``tol`` (adaptive tolerance),
     ``t_end`` (horizon) override the file's ``[run]`` options and the scene's defaults. Rows:
     every step (or every ``every``-th), or at the times ``at`` or every ``output_dt`` seconds
-    from dense output, and always the final state.
+    from dense output, and always the final state. ``max_steps`` caps the steps (default: the
+    command line's ``--max-steps``, 10⁹).
 
     A fixed step that turns the initial rotation by more than 0.5 rad a step is refused unless
     ``allow_coarse_step=True``. The run's error is estimated (``Simulation.error_estimate``)
@@ -275,9 +276,9 @@ def simulate(
         at=None if at is None else [float(x) for x in at],
         every=every,
         output_dt=output_dt,
-        max_steps=max_steps,
         allow_coarse_step=allow_coarse_step,
         check=check,
+        **({} if max_steps is None else {"max_steps": max_steps}),
     )
     return Simulation(raw)
 
@@ -500,16 +501,18 @@ def work_precision(
     params: Optional[Mapping[str, float]] = None,
     integrators: Optional[Sequence[str]] = None,
     t_end: Optional[float] = None,
-    max_seconds: float = 0.5,
+    max_seconds: Optional[float] = None,
     *,
     frame: Optional[str] = None,
 ) -> Any:
     """Error at the final time against cost, per integrator, as ``tumble work-precision``
     measures it: a reference solution (cross-checked), then for each integrator a ladder of
-    steps or tolerances until a run takes ``max_seconds`` or the error reaches round-off.
+    steps or tolerances until a run takes ``max_seconds`` (default: the command line's
+    ``--max-seconds``, 0.5 s) or the error reaches round-off.
 
     Returns one row per run (``integrator``, ``dt`` or ``tol``, ``steps``, ``evaluations``,
-    ``error``, ``max_energy_rel_err``, ``seconds``) as a DataFrame (``frame`` as for
+    ``error``, ``max_energy_rel_err``, ``wall_time_s``: named as the columns of
+    ``work-precision.csv``) as a DataFrame (``frame`` as for
     :func:`sweep`); ``attrs`` (pandas) hold the reference and why each ladder stopped. Times
     depend on the machine and its load.
     """
@@ -518,10 +521,10 @@ def work_precision(
         params=None if params is None else dict(params),
         integrators=None if integrators is None else list(integrators),
         t_end=t_end,
-        max_seconds=max_seconds,
+        **({} if max_seconds is None else {"max_seconds": max_seconds}),
     )
     rungs = raw.pop("rungs")
-    keys = ["integrator", "dt", "tol", "steps", "evaluations", "error", "max_energy_rel_err", "seconds"]
+    keys = ["integrator", "dt", "tol", "steps", "evaluations", "error", "max_energy_rel_err", "wall_time_s"]
     columns: Dict[str, np.ndarray] = {}
     for key in keys:
         values = [r[key] for r in rungs]

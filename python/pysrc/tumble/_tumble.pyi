@@ -18,7 +18,7 @@ def simulate(
     at: Optional[List[float]] = None,
     every: Optional[int] = None,
     output_dt: Optional[float] = None,
-    max_steps: int = 1_000_000_000,
+    max_steps: int = ...,
     allow_coarse_step: bool = False,
     check: bool = True,
 ) -> Dict[str, Any]:
@@ -69,7 +69,7 @@ def work_precision(
     params: Optional[Dict[str, float]] = None,
     integrators: Optional[List[str]] = None,
     t_end: Optional[float] = None,
-    max_seconds: float = 0.5,
+    max_seconds: float = ...,
 ) -> Dict[str, Any]:
     """The reference, ``rungs`` (a dict per run) and ``stopped`` (why each ladder stopped)."""
 

@@ -85,7 +85,7 @@ pub struct Args {
     pub output_dt: Option<f64>,
     /// Refuse a run estimated to take more steps than this (fixed steps: t_end/dt), and stop an
     /// adaptive one that reaches it.
-    #[arg(long = "max-steps", value_name = "N", default_value_t = 1_000_000_000)]
+    #[arg(long = "max-steps", value_name = "N", default_value_t = simulation::DEFAULT_MAX_STEPS)]
     pub max_steps: u64,
     /// Warn (on stderr and in the provenance file) when the largest relative energy error of
     /// the run exceeds this: the step does not resolve the motion.

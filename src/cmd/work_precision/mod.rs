@@ -50,7 +50,11 @@ pub struct Args {
     /// A ladder stops after a run that took longer than this many seconds; a run still going
     /// at twice this is cut. Each run of the reference is limited to 60 times this (a reference
     /// the limit cuts is refused before the study starts), each run of `--long` to 600 times.
-    #[arg(long = "max-seconds", value_name = "S", default_value_t = 0.5)]
+    #[arg(
+        long = "max-seconds",
+        value_name = "S",
+        default_value_t = Config::DEFAULT_MAX_RUN_SECONDS
+    )]
     pub max_seconds: f64,
     /// Long-run mode: relative energy error against time over `--long-steps` steps.
     #[arg(long)]
