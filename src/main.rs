@@ -1,10 +1,10 @@
 //! The `tumble` command line: parses flags, builds validated objects from them, calls the
 //! library crates and maps errors to a message on stderr and a non-zero exit code.
 
+mod animation;
 mod cmd;
 mod manifest;
 mod output;
-mod plot;
 mod provenance;
 mod signals;
 mod view;

@@ -2,28 +2,11 @@
 //! [`tumble_output::Destination`] — regular files appear whole or not at all, character
 //! devices and FIFOs are streamed to, anything else is refused before any work.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use anyhow::Result;
-use tumble_output::table::Format;
+pub use tumble_output::table::provenance_path;
 pub use tumble_output::{Destination, Mode};
-
-/// The provenance record written beside a run's table `target`: `target` with `.json`
-/// appended when it has an extension (`run.csv` → `run.csv.json`), and with the format's
-/// extension and `.json` when it has none (`results` → `results.csv.json`), so that the record
-/// is never a plain `NAME.json` a user may keep for something else.
-#[must_use]
-pub fn provenance_path(target: &Path, format: Format) -> PathBuf {
-    let mut name = target.as_os_str().to_owned();
-    if target.extension().is_none() {
-        name.push(match format {
-            Format::Csv => ".csv",
-            Format::Parquet => ".parquet",
-        });
-    }
-    name.push(".json");
-    PathBuf::from(name)
-}
 
 /// Whether `dest` is a regular file that exists now (so that writing it replaces it; the
 /// summary says so).
@@ -153,26 +136,5 @@ impl Drop for FolderGuard {
             // Fails, as it should, unless the folder is empty.
             let _ = std::fs::remove_dir(dir);
         }
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// The provenance record's name is never a bare `NAME.json`.
-    #[test]
-    fn provenance_names_keep_the_table_extension() {
-        let p = |t: &str, f| provenance_path(Path::new(t), f);
-        assert_eq!(p("run.csv", Format::Csv), PathBuf::from("run.csv.json"));
-        assert_eq!(
-            p("out/results", Format::Csv),
-            PathBuf::from("out/results.csv.json")
-        );
-        assert_eq!(
-            p("results", Format::Parquet),
-            PathBuf::from("results.parquet.json")
-        );
-        assert_eq!(p("data.txt", Format::Csv), PathBuf::from("data.txt.json"));
     }
 }

@@ -38,6 +38,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyBytes;
 
 mod body;
+mod plot;
 mod run;
 mod study;
 
@@ -132,6 +133,8 @@ fn _tumble(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("SimulationError", m.py().get_type::<SimulationError>())?;
     m.add_function(wrap_pyfunction!(run::simulate, m)?)?;
+    m.add_function(wrap_pyfunction!(plot::plot, m)?)?;
+    m.add_function(wrap_pyfunction!(plot::plot_run, m)?)?;
     m.add_function(wrap_pyfunction!(run::work_precision, m)?)?;
     m.add_function(wrap_pyfunction!(run::scenes_json, m)?)?;
     m.add_function(wrap_pyfunction!(run::integrators_json, m)?)?;

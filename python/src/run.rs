@@ -95,7 +95,7 @@ fn step(dt: Option<f64>, tol: Option<f64>) -> PyResult<Option<StepControl>> {
 /// Runs a scene (see the Python docstring of `tumble.simulate`).
 #[pyfunction]
 #[pyo3(signature = (scene, params=None, integrator=None, dt=None, tol=None, t_end=None, at=None,
-    every=None, output_dt=None, max_steps=1_000_000_000, allow_coarse_step=false, check=true))]
+    every=None, output_dt=None, max_steps=tumble_studies::simulation::DEFAULT_MAX_STEPS, allow_coarse_step=false, check=true))]
 pub(crate) fn simulate<'py>(
     py: Python<'py>,
     scene: &str,
@@ -131,11 +131,11 @@ pub(crate) fn simulate<'py>(
         cancel: None,
     };
     let plan = loaded.plan(&request, Naming::Python).map_err(refused)?;
+    let frame = loaded.frame_words();
     let LoadedScene {
         scene,
         origin,
         params,
-        frame,
         ..
     } = loaded;
     let info = scene.info();
@@ -179,11 +179,10 @@ pub(crate) fn simulate<'py>(
     out.set_item("data", f64_bytes(py, &data))?;
     out.set_item("rows", summary.rows)?;
     out.set_item("scene", info.name)?;
+    out.set_item("coordinates", info.coordinates)?;
+    out.set_item("rates", tumble_studies::simulation::rate_columns(info))?;
     out.set_item("origin", origin)?;
-    out.set_item(
-        "frame",
-        frame.unwrap_or_else(|| "the scene's body frame".to_string()),
-    )?;
+    out.set_item("frame", frame)?;
     let parameters = PyDict::new(py);
     for (k, v) in params.iter() {
         parameters.set_item(k, v)?;
@@ -259,7 +258,7 @@ pub(crate) fn integrators_json() -> PyResult<String> {
 
 /// Work–precision ladders (see the Python docstring of `tumble.work_precision`).
 #[pyfunction]
-#[pyo3(signature = (scene, params=None, integrators=None, t_end=None, max_seconds=0.5))]
+#[pyo3(signature = (scene, params=None, integrators=None, t_end=None, max_seconds=Config::DEFAULT_MAX_RUN_SECONDS))]
 pub(crate) fn work_precision<'py>(
     py: Python<'py>,
     scene: &str,
@@ -346,7 +345,7 @@ pub(crate) fn work_precision<'py>(
         row.set_item("evaluations", r.evaluations)?;
         row.set_item("error", r.error)?;
         row.set_item("max_energy_rel_err", r.max_energy_rel_err)?;
-        row.set_item("seconds", r.seconds)?;
+        row.set_item("wall_time_s", r.seconds)?;
         rungs.append(row)?;
     }
     out.set_item("rungs", rungs)?;

@@ -25,6 +25,8 @@ def test_work_precision_ladder_of_rk4_shows_fourth_order():
     slope = np.polyfit(np.log(dt[resolved]), np.log(error[resolved]), 1)[0]
     assert 3.7 < slope < 4.3, slope
     assert set(frame["integrator"]) == {"rk4"}
+    # The timing is named as in work-precision.csv.
+    assert (frame["wall_time_s"] > 0).all()
 
 
 def test_work_precision_refuses_a_method_the_scene_does_not_take():

@@ -14,7 +14,7 @@ use tumble_integrators::Flow;
 use tumble_scenarios::{Recorder, RunOptions};
 
 use super::simulate::{LoadedScene, SceneArgs, load_scene};
-use crate::plot::animation::{Captions, Container, caption, write};
+use crate::animation::{Captions, Container, caption, write};
 use crate::view::render::{Canvas, Renderer};
 
 /// Flags of `tumble animate`.
@@ -113,10 +113,10 @@ pub fn run(args: &Args) -> Result<()> {
             bail!("--t-end: a saved CSV is shown over all its rows");
         }
         let path = std::path::Path::new(&args.target.scene);
-        let (record_path, record) = super::plot::simulation_record(path)?;
-        let (scene, params) = super::plot::scene_and_parameters(&record, &record_path)?;
+        let (record_path, record) = tumble_plot::saved::run_record(path)?;
+        let (scene, params) = record.scene.scene(&record_path)?;
         let drawing = super::view::drawing_of(None, scene.info().name, &params)?;
-        let saved = super::plot::read_columns(path)?;
+        let saved = tumble_plot::saved::read_columns(path)?;
         (scene, params, Some((saved, record)), drawing)
     } else {
         let LoadedScene { scene, params, .. } = load_scene(&args.target)?;
@@ -159,7 +159,7 @@ pub fn run(args: &Args) -> Result<()> {
         .collect();
     let (rows, columns, integrator) = match saved {
         Some(((columns, values), record)) => {
-            let integrator = record["integrator"].as_str().unwrap_or("?").to_string();
+            let integrator = record.integrator.clone();
             (saved_rows(&values, &times), columns, integrator)
         }
         None => {
@@ -211,7 +211,7 @@ pub fn run(args: &Args) -> Result<()> {
                     labels: &labels,
                 },
             )?;
-            rgb.copy_from_slice(&crate::plot::downsample(&canvas.rgb, (w, h), SUPERSAMPLE));
+            rgb.copy_from_slice(&tumble_plot::downsample(&canvas.rgb, (w, h), SUPERSAMPLE));
             Ok(())
         },
     )?;

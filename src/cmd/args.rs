@@ -81,7 +81,7 @@ pub struct FigureArgs {
     /// SVG text: `font` keeps selectable text in the embedded shipped font, `paths` converts
     /// every glyph to a path.
     #[arg(long = "svg-text", value_enum, default_value_t)]
-    pub svg_text: crate::plot::options::SvgText,
+    pub svg_text: tumble_plot::options::SvgText,
 }
 
 impl FigureArgs {
@@ -89,12 +89,12 @@ impl FigureArgs {
     ///
     /// # Errors
     /// A malformed size, or a font size or resolution out of range.
-    pub fn options(&self) -> Result<crate::plot::FigureOptions> {
-        let opts = crate::plot::FigureOptions {
+    pub fn options(&self) -> Result<tumble_plot::FigureOptions> {
+        let opts = tumble_plot::FigureOptions {
             size: self
                 .figure_size
                 .as_deref()
-                .map(crate::plot::options::Size::parse)
+                .map(tumble_plot::options::Size::parse)
                 .transpose()?,
             font_pt: self.font_size,
             dpi: self.dpi,

@@ -19,10 +19,10 @@ use tumble_studies::hard_cases::Case;
 use tumble_studies::hard_cases::atlas::{self, AtlasConfig, AtlasReport, Method, Status};
 
 use crate::output;
-use crate::plot;
-use crate::plot::atlas::{Atlas, Cell};
 use crate::provenance::Provenance;
 use crate::signals;
+use tumble_plot as plot;
+use tumble_plot::atlas::{Atlas, AtlasCase};
 
 /// Flags of `tumble hard-cases`.
 #[derive(clap::Args, Debug)]
@@ -100,6 +100,9 @@ struct CaseJson<'a> {
     origin: &'a str,
     scene: &'static str,
     parameters: String,
+    /// The case's property bounds the final-state error (its atlas cell is coloured by it,
+    /// else by the relative energy error).
+    bounds_error: bool,
     t_end: f64,
     why: &'a str,
     good: &'a str,
@@ -111,6 +114,8 @@ struct Manifest<'a> {
     command: &'static str,
     rule: String,
     cases: Vec<CaseJson<'a>>,
+    /// The atlas's rows, as given (`NAME` or `NAME:dt=H`).
+    methods: Vec<String>,
     entries: usize,
     finished: usize,
     resumed: usize,
@@ -281,41 +286,15 @@ fn write_outputs(
         &dir.join("atlas.csv"),
         &atlas::atlas_csv(&report.entries).map_err(anyhow::Error::msg)?,
     )?;
-    let cells = methods
+    let atlas_cases: Vec<AtlasCase> = cases
         .iter()
-        .map(|m| {
-            cases
-                .iter()
-                .map(|c| {
-                    if c.scene.info().kind_for(m.info).is_none() {
-                        return Cell::NotApplicable;
-                    }
-                    report
-                        .entries
-                        .iter()
-                        .find(|e| e.case == c.name && e.method == m.spec())
-                        .map_or(Cell::Missing, |e| Cell::Entry {
-                            status: e.status,
-                            // The quantity the case's property bounds first.
-                            error: if c.property.error.is_some() {
-                                e.error
-                            } else {
-                                e.energy
-                            },
-                        })
-                })
-                .collect()
+        .map(|c| AtlasCase {
+            name: &c.name,
+            scene: c.scene.info(),
+            bounds_error: c.property.error.is_some(),
         })
         .collect();
-    let figure = Atlas {
-        title: "Hard cases: every method at an error of 1e-6 on each case's easy twin".into(),
-        subtitle: "colour: final-state error against the reference where the case bounds it, \
-                   else the relative energy error; log scale"
-            .into(),
-        cases: cases.iter().map(|c| c.name.clone()).collect(),
-        methods: methods.iter().map(Method::spec).collect(),
-        cells,
-    };
+    let figure = Atlas::of_entries(&atlas_cases, methods, &report.entries);
     for name in ["atlas.png", "atlas.svg"] {
         plot::save(&figure, &dir.join(name))?;
     }
@@ -339,12 +318,14 @@ fn write_outputs(
                 origin: &c.origin,
                 scene: c.scene.info().name,
                 parameters: atlas::parameters_text(c),
+                bounds_error: c.property.error.is_some(),
                 t_end: c.t_end,
                 why: &c.why,
                 good: &c.good,
                 reference: report.references.get(&c.name),
             })
             .collect(),
+        methods: methods.iter().map(Method::spec).collect(),
         entries: report.total,
         finished: report.entries.len(),
         resumed: report.resumed,

@@ -123,6 +123,51 @@ fn plot_redraws_a_work_precision_folder_as_the_command_drew_it() {
     );
 }
 
+/// The two figure kinds whose commands write no result `tumble plot` read before: a long run
+/// (`long.csv` and the record in `manifest.json`) and a hard-case atlas (`atlas.csv` and its
+/// manifest's cases and methods) redraw to the same file.
+#[test]
+fn plot_redraws_a_long_run_and_an_atlas_as_their_commands_drew_them() {
+    let tmp = TempDir::new().unwrap();
+    let dir = tmp.path();
+    succeeds(
+        dir,
+        &[
+            "work-precision",
+            "free-body",
+            "--long",
+            "--long-steps",
+            "2000",
+            "--integrators",
+            "split2,lgvi",
+            "-o",
+            "long",
+        ],
+    );
+    succeeds(dir, &["plot", "long", "-o", "long.svg"]);
+    assert_eq!(
+        read(&dir.join("long/long.svg")),
+        read(&dir.join("long.svg"))
+    );
+    succeeds(
+        dir,
+        &[
+            "hard-cases",
+            "--cases",
+            "sleeping-top,nearly-symmetric-body",
+            "--integrators",
+            "gauss8,rk4:dt=0.1",
+            "-o",
+            "atlas",
+        ],
+    );
+    succeeds(dir, &["plot", "atlas", "-o", "atlas.png"]);
+    assert_eq!(
+        std::fs::read(dir.join("atlas/atlas.png")).unwrap(),
+        std::fs::read(dir.join("atlas.png")).unwrap()
+    );
+}
+
 #[test]
 fn svg_embeds_the_shipped_font_and_keeps_hundredths_of_a_pixel() {
     let tmp = TempDir::new().unwrap();

@@ -9,7 +9,7 @@
 //!
 //! [`Table::kind`] tells CSV from Parquet by a path's extension, the way `--format` defaults.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use parquet::basic::{LogicalType, Repetition, Type as Physical};
@@ -204,4 +204,43 @@ fn field(c: &Column) -> Result<Type, ParquetError> {
         .with_repetition(repetition)
         .with_logical_type(logical)
         .build()
+}
+
+/// The provenance record written beside a run's table `target`: `target` with `.json`
+/// appended when it has an extension (`run.csv` → `run.csv.json`), and with the format's
+/// extension and `.json` when it has none (`results` → `results.csv.json`), so that the record
+/// is never a plain `NAME.json` a user may keep for something else.
+#[must_use]
+pub fn provenance_path(target: &Path, format: Format) -> PathBuf {
+    let mut name = target.as_os_str().to_owned();
+    if target.extension().is_none() {
+        name.push(match format {
+            Format::Csv => ".csv",
+            Format::Parquet => ".parquet",
+        });
+    }
+    name.push(".json");
+    PathBuf::from(name)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::path::PathBuf;
+
+    /// The provenance record's name is never a bare `NAME.json`.
+    #[test]
+    fn provenance_names_keep_the_table_extension() {
+        let p = |t: &str, f| provenance_path(Path::new(t), f);
+        assert_eq!(p("run.csv", Format::Csv), PathBuf::from("run.csv.json"));
+        assert_eq!(
+            p("out/results", Format::Csv),
+            PathBuf::from("out/results.csv.json")
+        );
+        assert_eq!(
+            p("results", Format::Parquet),
+            PathBuf::from("results.parquet.json")
+        );
+        assert_eq!(p("data.txt", Format::Csv), PathBuf::from("data.txt.json"));
+    }
 }

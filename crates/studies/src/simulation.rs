@@ -190,7 +190,21 @@ pub struct RunRequest {
     pub cancel: Option<CancelFlag>,
 }
 
+/// The most steps a run takes unless told otherwise (`simulate --max-steps`, Python's
+/// `max_steps`): a guard against a step size that would never reach the horizon.
+pub const DEFAULT_MAX_STEPS: u64 = 1_000_000_000;
+
+/// The frame of a run's orientation and angular-velocity columns when its scene file names
+/// none: the words a run's record (`FILE.csv.json`, Python's `Simulation.frame`) gives.
+pub const BODY_FRAME: &str = "the scene's body frame (docs/design.md, section 3)";
+
 impl LoadedScene {
+    /// The frame the rows report, in words: the `[body]` table's, else [`BODY_FRAME`].
+    #[must_use]
+    pub fn frame_words(&self) -> String {
+        self.frame.clone().unwrap_or_else(|| BODY_FRAME.to_string())
+    }
+
     /// The run options: the file's, with `request` laid over them.
     #[must_use]
     pub fn options(&self, request: &RunRequest) -> RunOptions {

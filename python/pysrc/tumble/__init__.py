@@ -12,7 +12,10 @@ the same numbers, to the last bit, and a refused input the same reason:
 * :func:`inertia` computes the mass properties of a closed triangle mesh (a file, or vertex and
   face arrays);
 * :func:`scenes`, :func:`integrators` list what there is; :func:`work_precision` measures error
-  against cost.
+  against cost;
+* :meth:`Simulation.plot` draws a run and :func:`plot` redraws a saved result (a run's CSV, a
+  sweep, work–precision, long-run or hard-case atlas folder) with the figure code of the
+  command line: the same result gives the same file, byte for byte.
 
 Long runs release the GIL; Ctrl-C stops them at the next step and raises
 ``KeyboardInterrupt``. Inputs refused before any work raise ``ValueError`` (``TypeError`` for a
@@ -41,6 +44,7 @@ __all__ = [
     "inertia",
     "integrators",
     "model_text",
+    "plot",
     "scenes",
     "simulate",
     "sweep",
@@ -59,7 +63,8 @@ class Simulation:
 
     ``result["t"]`` (or ``result.columns["t"]``) is a NumPy array of the column ``t``;
     ``result.names`` lists the columns in order (``t``, the coordinates, the rates, the
-    diagnostics). The run's record is in attributes: ``scene``, ``origin``, ``frame``,
+    diagnostics); ``coordinates`` and ``rates`` are the scene's coordinate and rate columns.
+    The run's record is in attributes: ``scene``, ``origin``, ``frame``,
     ``parameters``, ``integrator``, ``dt`` or ``tol``, ``t_end``, ``every``, ``at``, ``steps``,
     ``evaluations``, ``reached_t``, ``max_energy_rel_err`` (the largest relative energy error
     over every step), ``error_estimate``, ``version``.
@@ -75,13 +80,16 @@ class Simulation:
     def __init__(self, raw: Dict[str, Any]) -> None:
         names: List[str] = list(raw.pop("columns"))
         rows: int = raw["rows"]
-        data = _f64(raw.pop("data"))
+        self._data: bytes = raw.pop("data")
+        data = _f64(self._data)
         self.names: List[str] = names
         self.columns: Dict[str, np.ndarray] = {
             name: data[k * rows : (k + 1) * rows] for k, name in enumerate(names)
         }
         self.rows: int = rows
         self.scene: str = raw["scene"]
+        self.coordinates: List[str] = list(raw["coordinates"])
+        self.rates: List[str] = list(raw["rates"])
         self.origin: str = raw["origin"]
         self.frame: str = raw["frame"]
         self.parameters: Dict[str, float] = raw["parameters"]
@@ -114,6 +122,39 @@ class Simulation:
         return (
             f"<Simulation {self.scene}: {self.integrator}, {step}, t in [0, {self.t_end}], "
             f"{self.rows} rows x {len(self.names)} columns>"
+        )
+
+    def plot(
+        self,
+        path: PathLike,
+        *,
+        figure_size: Optional[str] = None,
+        font_size: Optional[float] = None,
+        dpi: Optional[float] = None,
+        svg_text: str = "font",
+    ) -> None:
+        """Draw the run as ``tumble simulate --plot PATH`` does (PNG, SVG or PDF by the
+        extension): the coordinates, rates and energy error against time, with the display
+        symbols, units and log axes of the command line. The options are ``tumble``'s figure
+        options: ``figure_size`` (``'single'``, ``'double'`` or ``'WxH'`` in in, cm or mm),
+        ``font_size`` (pt), ``dpi``, ``svg_text`` (``'font'`` or ``'paths'``). The same run
+        gives the same file as the command line, byte for byte."""
+        _tumble.plot_run(
+            self.scene,
+            self.coordinates,
+            self.rates,
+            self.integrator,
+            self.dt,
+            self.tol,
+            list(self.parameters.items()),
+            self.names,
+            self._data,
+            self.rows,
+            os.fspath(path),
+            figure_size=figure_size,
+            font_size=font_size,
+            dpi=dpi,
+            svg_text=svg_text,
         )
 
     def to_pandas(self) -> Any:
@@ -202,7 +243,7 @@ def simulate(
     *,
     every: Optional[int] = None,
     output_dt: Optional[float] = None,
-    max_steps: int = 1_000_000_000,
+    max_steps: Optional[int] = None,
     allow_coarse_step: bool = False,
     check: bool = True,
 ) -> Simulation:
@@ -215,7 +256,8 @@ def simulate(
     file's) values. ``integrator``, ``dt`` (fixed step) or ``tol`` (adaptive tolerance),
     ``t_end`` (horizon) override the file's ``[run]`` options and the scene's defaults. Rows:
     every step (or every ``every``-th), or at the times ``at`` or every ``output_dt`` seconds
-    from dense output, and always the final state.
+    from dense output, and always the final state. ``max_steps`` caps the steps (default: the
+    command line's ``--max-steps``, 10⁹).
 
     A fixed step that turns the initial rotation by more than 0.5 rad a step is refused unless
     ``allow_coarse_step=True``. The run's error is estimated (``Simulation.error_estimate``)
@@ -234,9 +276,9 @@ def simulate(
         at=None if at is None else [float(x) for x in at],
         every=every,
         output_dt=output_dt,
-        max_steps=max_steps,
         allow_coarse_step=allow_coarse_step,
         check=check,
+        **({} if max_steps is None else {"max_steps": max_steps}),
     )
     return Simulation(raw)
 
@@ -265,6 +307,51 @@ def _progress_bar(total_hint: Optional[int] = None) -> Callable[[int, int, int],
             sys.stderr.flush()
 
     return update
+
+
+def plot(
+    result: PathLike,
+    path: PathLike,
+    *,
+    columns: Optional[Sequence[str]] = None,
+    t_range: Optional[Sequence[float]] = None,
+    metric: Optional[str] = None,
+    figure: str = "map",
+    slices: int = 5,
+    log_colour: bool = False,
+    colour_map: str = "viridis",
+    figure_size: Optional[str] = None,
+    font_size: Optional[float] = None,
+    dpi: Optional[float] = None,
+    svg_text: str = "font",
+) -> None:
+    """Redraw a saved result into ``path`` (PNG, SVG or PDF by the extension), as
+    ``tumble plot RESULT -o PATH`` does and with the same code: the same result gives the same
+    file, byte for byte.
+
+    ``result`` is a run's CSV (``simulate -o FILE.csv``, its ``FILE.csv.json`` beside it), or a
+    folder: a sweep (``sweep(..., output=DIR)`` or ``tumble sweep -o DIR``), a work–precision
+    study, a long run (``work-precision --long``) or a hard-case atlas. A run: ``columns`` to
+    draw and ``t_range=(t0, t1)``. A sweep: ``metric`` (by its name in ``results.csv``),
+    ``figure`` (``'map'`` or ``'slices'``), ``slices``, ``log_colour``, ``colour_map``
+    (``'viridis'``, ``'cividis'``, ``'magma'``, ``'grey'``). Figure options as for
+    :meth:`Simulation.plot`.
+    """
+    _tumble.plot(
+        os.fspath(result),
+        os.fspath(path),
+        columns=None if columns is None else list(columns),
+        t_range=None if t_range is None else (float(t_range[0]), float(t_range[1])),
+        metric=metric,
+        figure=figure,
+        slices=slices,
+        log_colour=log_colour,
+        colour_map=colour_map,
+        figure_size=figure_size,
+        font_size=font_size,
+        dpi=dpi,
+        svg_text=svg_text,
+    )
 
 
 def _frame(columns: Dict[str, np.ndarray], kind: str) -> Any:
@@ -414,16 +501,18 @@ def work_precision(
     params: Optional[Mapping[str, float]] = None,
     integrators: Optional[Sequence[str]] = None,
     t_end: Optional[float] = None,
-    max_seconds: float = 0.5,
+    max_seconds: Optional[float] = None,
     *,
     frame: Optional[str] = None,
 ) -> Any:
     """Error at the final time against cost, per integrator, as ``tumble work-precision``
     measures it: a reference solution (cross-checked), then for each integrator a ladder of
-    steps or tolerances until a run takes ``max_seconds`` or the error reaches round-off.
+    steps or tolerances until a run takes ``max_seconds`` (default: the command line's
+    ``--max-seconds``, 0.5 s) or the error reaches round-off.
 
     Returns one row per run (``integrator``, ``dt`` or ``tol``, ``steps``, ``evaluations``,
-    ``error``, ``max_energy_rel_err``, ``seconds``) as a DataFrame (``frame`` as for
+    ``error``, ``max_energy_rel_err``, ``wall_time_s``: named as the columns of
+    ``work-precision.csv``) as a DataFrame (``frame`` as for
     :func:`sweep`); ``attrs`` (pandas) hold the reference and why each ladder stopped. Times
     depend on the machine and its load.
     """
@@ -432,10 +521,10 @@ def work_precision(
         params=None if params is None else dict(params),
         integrators=None if integrators is None else list(integrators),
         t_end=t_end,
-        max_seconds=max_seconds,
+        **({} if max_seconds is None else {"max_seconds": max_seconds}),
     )
     rungs = raw.pop("rungs")
-    keys = ["integrator", "dt", "tol", "steps", "evaluations", "error", "max_energy_rel_err", "seconds"]
+    keys = ["integrator", "dt", "tol", "steps", "evaluations", "error", "max_energy_rel_err", "wall_time_s"]
     columns: Dict[str, np.ndarray] = {}
     for key in keys:
         values = [r[key] for r in rungs]

@@ -1,7 +1,7 @@
 """Type stubs of the native module ``tumble._tumble`` (the raw results the ``tumble``
 package turns into NumPy arrays and DataFrames)."""
 
-from typing import Any, Callable, Dict, List, Optional, Union
+from typing import Any, Callable, Dict, List, Optional, Tuple, Union
 
 __version__: str
 
@@ -18,19 +18,58 @@ def simulate(
     at: Optional[List[float]] = None,
     every: Optional[int] = None,
     output_dt: Optional[float] = None,
-    max_steps: int = 1_000_000_000,
+    max_steps: int = ...,
     allow_coarse_step: bool = False,
     check: bool = True,
 ) -> Dict[str, Any]:
     """The run's record, ``columns`` (names) and ``data``: the columns one after the other,
     native-endian float64 bytes, ``rows`` values each."""
 
+def plot(
+    input: str,
+    output: str,
+    *,
+    columns: Optional[List[str]] = None,
+    t_range: Optional[Tuple[float, float]] = None,
+    metric: Optional[str] = None,
+    figure: str = "map",
+    slices: int = 5,
+    log_colour: bool = False,
+    colour_map: str = "viridis",
+    figure_size: Optional[str] = None,
+    font_size: Optional[float] = None,
+    dpi: Optional[float] = None,
+    svg_text: str = "font",
+) -> None:
+    """``tumble plot INPUT -o OUTPUT``: a saved result redrawn."""
+
+def plot_run(
+    scene: str,
+    coordinates: List[str],
+    rates: List[str],
+    integrator: str,
+    dt: Optional[float],
+    tol: Optional[float],
+    parameters: List[Tuple[str, float]],
+    columns: List[str],
+    data: bytes,
+    rows: int,
+    output: str,
+    *,
+    figure_size: Optional[str] = None,
+    font_size: Optional[float] = None,
+    dpi: Optional[float] = None,
+    svg_text: str = "font",
+) -> None:
+    """The ``simulate --plot`` figure of a run held in memory (``data`` as :func:`simulate`
+    returns it)."""
+
 def work_precision(
     scene: str,
     params: Optional[Dict[str, float]] = None,
     integrators: Optional[List[str]] = None,
     t_end: Optional[float] = None,
-    max_seconds: float = 0.5,
+    max_seconds: float = ...,
 ) -> Dict[str, Any]:
     """The reference, ``rungs`` (a dict per run) and ``stopped`` (why each ladder stopped)."""
 

@@ -35,8 +35,9 @@ use rows::CsvRecorder;
 use super::args::{parse_set, refuse_repeated_keys};
 use crate::manifest;
 use crate::output;
-use crate::plot;
 use crate::signals;
+use tumble_plot as plot;
+use tumble_plot::trajectory::{RunResult, step_words};
 
 /// Flags of `tumble simulate`.
 #[derive(clap::Args, Debug)]
@@ -84,7 +85,7 @@ pub struct Args {
     pub output_dt: Option<f64>,
     /// Refuse a run estimated to take more steps than this (fixed steps: t_end/dt), and stop an
     /// adaptive one that reaches it.
-    #[arg(long = "max-steps", value_name = "N", default_value_t = 1_000_000_000)]
+    #[arg(long = "max-steps", value_name = "N", default_value_t = simulation::DEFAULT_MAX_STEPS)]
     pub max_steps: u64,
     /// Warn (on stderr and in the provenance file) when the largest relative energy error of
     /// the run exceeds this: the step does not resolve the motion.
@@ -322,13 +323,6 @@ fn parse_times(raw: &str) -> Result<Vec<f64>> {
         .collect()
 }
 
-pub(crate) fn step_words(step: StepControl) -> String {
-    match step {
-        StepControl::Fixed(h) => format!("fixed step dt = {h} s"),
-        StepControl::Tolerance(tol) => format!("tolerance {}", number(tol)),
-    }
-}
-
 /// What a run produced.
 struct Outcome {
     summary: RunSummary,
@@ -563,17 +557,21 @@ pub fn run(args: &Args) -> Result<()> {
         .into());
     }
 
-    if let (Some(dest), Some(values)) = (&plot_dest, &kept) {
-        let figure = plot::trajectory::simulation(
-            info,
-            setup.plan.integrator(),
-            &step_words(setup.plan.step),
-            setup.params.iter(),
-            &info.columns(),
-            values,
-        );
-        plot::save_to(&figure, dest, &figure_options)?;
-    }
+    let kept = match (&plot_dest, kept) {
+        (Some(dest), Some(values)) => {
+            let run = RunResult::of_scene(
+                info,
+                setup.plan.integrator(),
+                setup.plan.step,
+                &setup.params,
+                info.columns(),
+                values,
+            );
+            plot::save_to(&run.figure(), dest, &figure_options)?;
+            Some(run.values)
+        }
+        (_, kept) => kept,
+    };
     let record = manifest::to_text(&SimulationRecord::new(
         &setup,
         &summary,

@@ -139,9 +139,10 @@ impl<'a> SimulationRecord<'a> {
             provenance: Provenance::now(1),
             scene: setup.scene.info().name,
             origin: &setup.origin,
-            frame: setup.frame.clone().unwrap_or_else(|| {
-                "the scene's body frame (docs/design.md, section 3)".to_string()
-            }),
+            frame: setup
+                .frame
+                .clone()
+                .unwrap_or_else(|| tumble_studies::simulation::BODY_FRAME.to_string()),
             parameters: setup.params.iter().collect(),
             integrator: plan.integrator(),
             dt,

@@ -22,10 +22,12 @@ use tumble_studies::work_precision::{
 use super::simulate::{LoadedScene, SceneArgs, load_scene, number};
 use crate::manifest::{self, WorkPrecisionManifest};
 use crate::output;
-use crate::plot;
-use crate::plot::work_precision::Curve;
-use crate::plot::xy::Series;
+use crate::provenance::Provenance;
 use crate::signals;
+use tumble_plot as plot;
+use tumble_plot::saved::SceneRecord;
+use tumble_plot::work_precision::{Curve, LongRecord, long_label};
+use tumble_plot::xy::Series;
 use tumble_studies::simulation::{Naming, flag_words};
 
 /// Flags of `tumble work-precision`.
@@ -48,7 +50,11 @@ pub struct Args {
     /// A ladder stops after a run that took longer than this many seconds; a run still going
     /// at twice this is cut. Each run of the reference is limited to 60 times this (a reference
     /// the limit cuts is refused before the study starts), each run of `--long` to 600 times.
-    #[arg(long = "max-seconds", value_name = "S", default_value_t = 0.5)]
+    #[arg(
+        long = "max-seconds",
+        value_name = "S",
+        default_value_t = Config::DEFAULT_MAX_RUN_SECONDS
+    )]
     pub max_seconds: f64,
     /// Long-run mode: relative energy error against time over `--long-steps` steps.
     #[arg(long)]
@@ -621,27 +627,27 @@ fn long(
         report_long(r, &mut csv, &mut lines, &mut table)?;
     }
     output::write_whole(&dir.join("long.csv"), &csv.into_inner()?)?;
-    let figure = plot::work_precision::long_figure(
-        format!(
-            "{}: relative energy error over {} steps",
-            info.name, args.long_steps
-        ),
-        format!(
-            "{}; {}{}",
-            if args.long_tol.is_some() {
-                "equal cost".to_string()
-            } else {
-                format!("dt = {h} s")
-            },
-            plot::labels::parameters(params.iter()),
-            if matched.is_empty() {
-                String::new()
-            } else {
-                format!("; {matched}")
-            }
-        ),
-        lines,
-    );
+    let record = LongRecord {
+        scene: SceneRecord {
+            scene: info.name.to_string(),
+            parameters: params.iter().map(|(k, v)| (k.to_string(), v)).collect(),
+        },
+        steps: args.long_steps,
+        dt: h,
+        equal_cost: args.long_tol.is_some(),
+        matched,
+    };
+    let figure = record.figure(params, lines);
+    output::write_whole(
+        &dir.join("manifest.json"),
+        manifest::to_text(&LongManifest {
+            command: "work-precision --long",
+            origin,
+            record: &record,
+            provenance: Provenance::now(1),
+        })?
+        .as_bytes(),
+    )?;
     for ext in ["png", "svg"] {
         plot::save_with(
             &figure,
@@ -694,10 +700,17 @@ fn report_long(
             );
         }
     }
-    let label = match r.control {
-        StepControl::Fixed(_) => r.integrator.clone(),
-        StepControl::Tolerance(_) => format!("{} ({control})", r.integrator),
-    };
-    lines.push(Series::line(label, points));
+    lines.push(Series::line(long_label(&r.integrator, &control), points));
     Ok(())
+}
+
+/// `manifest.json` of a long-run folder: the record its figure is drawn from, with where the
+/// scene came from and the provenance.
+#[derive(serde::Serialize)]
+struct LongManifest<'a> {
+    command: &'static str,
+    origin: &'a str,
+    #[serde(flatten)]
+    record: &'a LongRecord,
+    provenance: Provenance,
 }

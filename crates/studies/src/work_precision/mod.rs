@@ -188,6 +188,10 @@ pub struct Config {
 }
 
 impl Config {
+    /// [`Config::max_run_seconds`] unless told otherwise (`work-precision --max-seconds`,
+    /// Python's `max_seconds`).
+    pub const DEFAULT_MAX_RUN_SECONDS: f64 = 0.5;
+
     /// A ladder's run is cut at this multiple of [`Config::max_run_seconds`].
     pub const CUT_FACTOR: f64 = 2.0;
 
@@ -196,7 +200,7 @@ impl Config {
     pub fn new(info: &SceneInfo) -> Self {
         Config {
             t_end: info.default_t_end,
-            max_run_seconds: 0.5,
+            max_run_seconds: Config::DEFAULT_MAX_RUN_SECONDS,
             max_reference_seconds: 30.0,
             max_steps: u64::MAX,
             error_floor: 1e-14,

@@ -1,25 +1,40 @@
-//! Plots (plotters): PNG and SVG figures with text that renders without system fonts.
+//! tumble's figures (plotters): PNG, SVG and PDF figures of typed results, with text that
+//! renders without system fonts. The command line (`simulate --plot`, `sweep`,
+//! `work-precision`, `hard-cases`, `plot`) and the Python package (`Simulation.plot`,
+//! `tumble.plot`) both draw through this crate, so the same result gives the same file.
+//!
+//! # The figure of each result
+//!
+//! | result | figure |
+//! |---|---|
+//! | a run | [`trajectory::RunResult::figure`] |
+//! | a sweep over a grid | [`sweep::figures`]: the [`heatmap`] map and the [`slices`] |
+//! | a work–precision study | [`work_precision::study_figure`] |
+//! | a long run | [`work_precision::LongRecord::figure`] |
+//! | a hard-case atlas | [`atlas::Atlas::of_entries`] |
+//!
+//! [`saved::figure`] reads any of them back from the files its command wrote and draws it.
 //!
 //! # Design
 //!
 //! * **A shipped font.** DejaVu Sans (`assets/fonts/DejaVuSans.ttf`, licence beside it) is
-//!   compiled into the binary and registered with plotters' `ab_glyph` backend as the
+//!   compiled in and registered with plotters' `ab_glyph` backend as the
 //!   `sans-serif` family ([`register_fonts`]), so text renders the same on a machine without
 //!   fontconfig or any installed font. SVG output names the `sans-serif` family; the shipped
 //!   font only measures the text there. PNG text is laid out by [`text::ShapedText`] (plotters
 //!   0.3.7 misplaces glyphs), PNGs are drawn at [`SUPERSAMPLE`] times their size and averaged
 //!   down (plotters draws lines aliased), and encoded with the best PNG compression.
 //! * **Figures are values.** A [`Figure`] knows its size and draws itself on any plotters
-//!   backend; [`save`] picks PNG or SVG from the file's extension and writes the file whole or
-//!   not at all (temporary file beside it, renamed when complete).
+//!   backend; [`save`] picks PNG, SVG or PDF from the file's extension and writes the file
+//!   whole or not at all (temporary file beside it, renamed when complete).
 //! * **Reusable parts.** [`xy`] has stacked panels of line or point series on linear or
 //!   logarithmic axes (trajectories against time; log-log work–precision plots), [`colour`] a
-//!   colour-blind-safe palette for series and the viridis map for heatmaps with a colour bar,
-//!   [`trajectory`] the `simulate --plot` figure built from those, [`heatmap`] a value on a
-//!   grid of two parameters with a colour bar (the sweep's map) and [`slices`] its rows as
-//!   line series.
+//!   colour-blind-safe palette for series and the colour maps of heatmaps with a colour bar,
+//!   [`legend`] legends placed where they cover no data, [`labels`] the display symbols of
+//!   parameters and columns.
+//! * **No printing, no command line.** Errors are returned (`anyhow`, with the path or option
+//!   at fault); the option enums derive `clap::ValueEnum` only with the `clap` feature.
 
-pub mod animation;
 pub mod atlas;
 pub mod colour;
 pub mod heatmap;
@@ -27,6 +42,7 @@ pub mod labels;
 pub mod legend;
 pub mod log_axis;
 pub mod options;
+pub mod saved;
 pub mod slices;
 pub mod sweep;
 pub mod text;
@@ -44,14 +60,14 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::{FontStyle, register_font};
 
-use crate::output;
 pub use options::FigureOptions;
+use tumble_output as output;
 
 /// The font family every figure uses; [`register_fonts`] binds it to the shipped font.
 pub const FONT: &str = "sans-serif";
 
 /// DejaVu Sans, compiled in (licence: `assets/fonts/LICENSE-DejaVu.txt`).
-static DEJAVU_SANS: &[u8] = include_bytes!("../../assets/fonts/DejaVuSans.ttf");
+static DEJAVU_SANS: &[u8] = include_bytes!("../assets/fonts/DejaVuSans.ttf");
 
 /// Registers the shipped font as the [`FONT`] family (normal, bold, oblique and italic styles
 /// all fall back to it). Idempotent; [`save`] calls it.

@@ -86,7 +86,8 @@ impl Size {
 }
 
 /// How SVG text is written.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
 pub enum SvgText {
     /// `<text>` elements in the shipped font, embedded in the file (selectable text).
     #[default]

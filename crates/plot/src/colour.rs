@@ -94,7 +94,8 @@ const GREY: Stops = {
 };
 
 /// The colour map of a heatmap and its colour bar.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
 pub enum ColourMap {
     /// Dark purple to yellow, perceptually uniform.
     #[default]
@@ -108,6 +109,27 @@ pub enum ColourMap {
 }
 
 impl ColourMap {
+    /// Every colour map, in the order of their documentation.
+    pub const ALL: [ColourMap; 4] = [
+        ColourMap::Viridis,
+        ColourMap::Cividis,
+        ColourMap::Magma,
+        ColourMap::Grey,
+    ];
+
+    /// The map of a name as the command line writes it (`viridis`, `cividis`, `magma`,
+    /// `grey`).
+    #[must_use]
+    pub fn from_name(name: &str) -> Option<Self> {
+        match name {
+            "viridis" => Some(ColourMap::Viridis),
+            "cividis" => Some(ColourMap::Cividis),
+            "magma" => Some(ColourMap::Magma),
+            "grey" => Some(ColourMap::Grey),
+            _ => None,
+        }
+    }
+
     /// The colour at `x ∈ [0, 1]` (clamped; NaN gives the low end).
     #[must_use]
     pub fn at(self, x: f64) -> RGBColor {
@@ -160,8 +182,7 @@ mod tests {
     /// read as lighter in any map and in greyscale print.
     #[test]
     fn every_colour_map_grows_lighter_with_the_value() {
-        use clap::ValueEnum;
-        for map in ColourMap::value_variants() {
+        for map in &ColourMap::ALL {
             let luminance = |x: f64| {
                 let RGBColor(r, g, b) = map.at(x);
                 0.2126 * f64::from(r) + 0.7152 * f64::from(g) + 0.0722 * f64::from(b)
@@ -174,6 +195,12 @@ mod tests {
             assert_eq!(map.at(2.0), map.at(1.0));
         }
         assert_eq!(ColourMap::Grey.at(0.5), RGBColor(0x73, 0x73, 0x73));
+        for (name, map) in ["viridis", "cividis", "magma", "grey"]
+            .iter()
+            .zip(ColourMap::ALL)
+        {
+            assert_eq!(ColourMap::from_name(name), Some(map));
+        }
         assert_eq!(ColourMap::Cividis.at(0.0), RGBColor(0x00, 0x22, 0x4e));
     }
 

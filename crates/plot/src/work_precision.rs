@@ -107,6 +107,62 @@ pub fn figure(title: String, subtitle: String, curves: &[Curve]) -> StackedFigur
     }
 }
 
+/// The record of a long run (`work-precision --long`), written into its folder's
+/// `manifest.json` and read back by `tumble plot`: what its figure's title and subtitle say.
+#[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
+pub struct LongRecord {
+    /// The scene and its parameters.
+    #[serde(flatten)]
+    pub scene: crate::saved::SceneRecord,
+    /// Steps of each run (at the scene's default step).
+    pub steps: u64,
+    /// The scene's default step (s).
+    pub dt: f64,
+    /// Compared at equal cost from the adaptive side (`--long-tol`).
+    pub equal_cost: bool,
+    /// How the adaptive method was matched to the fixed-step ones, in words (empty: none).
+    pub matched: String,
+}
+
+impl LongRecord {
+    /// The long-run figure of this record with the scene's `params` and one line per run.
+    #[must_use]
+    pub fn figure(&self, params: &tumble_scenarios::Params, lines: Vec<Series>) -> StackedFigure {
+        long_figure(
+            format!(
+                "{}: relative energy error over {} steps",
+                self.scene.scene, self.steps
+            ),
+            format!(
+                "{}; {}{}",
+                if self.equal_cost {
+                    "equal cost".to_string()
+                } else {
+                    format!("dt = {} s", self.dt)
+                },
+                super::labels::parameters(params.iter()),
+                if self.matched.is_empty() {
+                    String::new()
+                } else {
+                    format!("; {}", self.matched)
+                }
+            ),
+            lines,
+        )
+    }
+}
+
+/// The legend label of a long run: the integrator, with its tolerance when adaptive
+/// (`control` as `long.csv` writes it: `dt = …` or `tol = …`).
+#[must_use]
+pub fn long_label(integrator: &str, control: &str) -> String {
+    if control.starts_with("tol") {
+        format!("{integrator} ({control})")
+    } else {
+        integrator.to_string()
+    }
+}
+
 /// The relative energy error's maximum per logarithmic time bin, one line per method.
 pub fn long_figure(title: String, subtitle: String, lines: Vec<Series>) -> StackedFigure {
     let mut panel = Panel::new(

@@ -7,8 +7,8 @@ use anyhow::Result;
 use tumble_scenarios::{Guide, StepControl};
 use tumble_studies::sweep::{Metric, PointRow, Sampling, Status, SweepDefinition};
 
-use crate::plot;
-use crate::plot::labels;
+use crate as plot;
+use crate::labels;
 use tumble_scenarios::display::symbol;
 
 fn metric_label(m: &Metric) -> String {
@@ -22,7 +22,7 @@ fn metric_label(m: &Metric) -> String {
 /// The plot files' stem for metric `m`: `tilt` for the tilt metrics, else the metric's name
 /// with every character other than a letter, digit, `.`, `-` or `_` written `_`
 /// (`max:alpha` → `max_alpha`, `first_time:tilt>0.5` → `first_time_tilt_0.5`).
-pub(crate) fn plot_stem(m: &Metric) -> String {
+pub fn plot_stem(m: &Metric) -> String {
     if m.needs_tilt() {
         return "tilt".to_string();
     }
@@ -49,7 +49,7 @@ fn fixed_parameters(def: &SweepDefinition) -> String {
 
 /// What to draw of a sweep: which of its metrics, and along how many rows of the grid.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) struct Choice {
+pub struct Choice {
     /// Index into the sweep's metrics.
     pub metric: usize,
     /// Most slices (rows of the grid) to draw.
@@ -73,7 +73,7 @@ impl Default for Choice {
 
 /// The figures of a complete grid sweep: the map (two axes with increasing grid values) and
 /// the slices, with the files' stem.
-pub(crate) struct Figures {
+pub struct Figures {
     /// `tilt`, or the metric's name made safe for a file name.
     pub stem: String,
     /// The map, for a two-axis grid.
@@ -84,7 +84,7 @@ pub(crate) struct Figures {
 
 /// Draws the map and slices of a complete grid sweep with `opts`; returns the file names
 /// written.
-pub(crate) fn draw_plots(
+pub fn draw_plots(
     def: &SweepDefinition,
     dir: &Path,
     rows: &[PointRow],
@@ -111,11 +111,7 @@ pub(crate) fn draw_plots(
 
 /// The figures of metric `choice.metric` of a sweep over a grid of one or two axes; `None`
 /// for random sampling, more than two axes or a metric the sweep does not have.
-pub(crate) fn figures(
-    def: &SweepDefinition,
-    rows: &[PointRow],
-    choice: &Choice,
-) -> Option<Figures> {
+pub fn figures(def: &SweepDefinition, rows: &[PointRow], choice: &Choice) -> Option<Figures> {
     let k = choice.metric;
     let metric = def.metrics.get(k)?;
     if def.sampling != Sampling::Grid || def.axes.len() > 2 {
@@ -290,7 +286,7 @@ fn guides(
 }
 
 /// A sweep's step or tolerance in words: `fixed step dt = 0.01 s`, `tolerance 1e-10`.
-pub(crate) fn step_words(step: StepControl) -> String {
+pub fn step_words(step: StepControl) -> String {
     match step {
         StepControl::Fixed(h) => format!("fixed step dt = {h} s"),
         StepControl::Tolerance(tol) => format!("tolerance {tol:e}"),

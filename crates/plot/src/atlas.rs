@@ -8,7 +8,8 @@ use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 use super::{DrawResult, Figure, colour, font};
-use tumble_studies::hard_cases::atlas::Status;
+use tumble_scenarios::SceneInfo;
+use tumble_studies::hard_cases::atlas::{Entry, Method, Status};
 
 /// One cell of the atlas.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -39,6 +40,58 @@ pub struct Atlas {
     pub methods: Vec<String>,
     /// `cells[method][case]`.
     pub cells: Vec<Vec<Cell>>,
+}
+
+/// A case of an atlas as its figure reads it: its name, the scene it runs (which methods
+/// apply), and whether its property bounds the final-state error (the cell is coloured by
+/// that error, else by the relative energy error).
+#[derive(Debug, Clone, Copy)]
+pub struct AtlasCase<'a> {
+    /// The case's name.
+    pub name: &'a str,
+    /// Its scene's declaration.
+    pub scene: &'a SceneInfo,
+    /// Its property bounds the final-state error.
+    pub bounds_error: bool,
+}
+
+impl Atlas {
+    /// The figure of a finished (or cut short) atlas: `methods` × `cases`, each cell the entry
+    /// of that method on that case, blank where the method does not run the case's scene.
+    /// `tumble hard-cases` and `tumble plot DIR` both draw through this.
+    #[must_use]
+    pub fn of_entries(cases: &[AtlasCase<'_>], methods: &[Method], entries: &[Entry]) -> Self {
+        let cells = methods
+            .iter()
+            .map(|m| {
+                let spec = m.spec();
+                cases
+                    .iter()
+                    .map(|c| {
+                        if c.scene.kind_for(m.info).is_none() {
+                            return Cell::NotApplicable;
+                        }
+                        entries
+                            .iter()
+                            .find(|e| e.case == c.name && e.method == spec)
+                            .map_or(Cell::Missing, |e| Cell::Entry {
+                                status: e.status,
+                                error: if c.bounds_error { e.error } else { e.energy },
+                            })
+                    })
+                    .collect()
+            })
+            .collect();
+        Atlas {
+            title: "Hard cases: every method at an error of 1e-6 on each case's easy twin".into(),
+            subtitle: "colour: final-state error against the reference where the case bounds \
+                       it, else the relative energy error; log scale"
+                .into(),
+            cases: cases.iter().map(|c| c.name.to_string()).collect(),
+            methods: methods.iter().map(Method::spec).collect(),
+            cells,
+        }
+    }
 }
 
 /// Colour range of `log10(error)`.

@@ -14,7 +14,9 @@
 //! `qz` components of a unit quaternion; a rate `<name>_dot` has the unit of `<name>` per
 //! second, `omega_x` (any `omega_*`) is an angular velocity in rad/s.
 
+use tumble_scenarios::StepControl;
 use tumble_scenarios::display::symbol;
+use tumble_studies::simulation::number;
 
 use super::xy::{Panel, Scale, Series, StackedFigure};
 
@@ -99,7 +101,7 @@ pub struct Run<'a> {
     /// `values[j][i]`: column `j` at row `i`.
     pub values: &'a [Vec<f64>],
     /// The scene's coordinates.
-    pub coordinates: &'a [&'a str],
+    pub coordinates: &'a [String],
     /// The scene's rate columns (`<coordinate>_dot`, or named rates such as `omega_x`).
     pub rates: &'a [String],
 }
@@ -131,7 +133,7 @@ pub fn figure(title: impl Into<String>, run: &Run<'_>) -> StackedFigure {
         Some((_, names)) => names.push(name),
         None => groups.push((label, vec![name])),
     };
-    for &c in run.coordinates {
+    for c in run.coordinates {
         let q = quantity(c);
         add(with_unit(q.kind, q.unit), c);
     }
@@ -180,28 +182,85 @@ pub fn figure(title: impl Into<String>, run: &Run<'_>) -> StackedFigure {
     }
 }
 
-/// The `simulate --plot` figure of a run of scene `info` (`columns` as in its CSV, `values`
-/// column by column) with `integrator` at `step` (in words) and `params` in the scene's
-/// order. `tumble plot` redraws a saved CSV through this same function.
+/// A finished run, as its figure reads it: what the scene declares (its name, coordinates and
+/// rate columns), how the run was made (integrator, step control, parameters in the scene's
+/// order) and its rows, column by column. `simulate --plot`, `tumble plot FILE.csv` and
+/// Python's `Simulation.plot` build one and draw [`RunResult::figure`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct RunResult {
+    /// The scene's name.
+    pub scene: String,
+    /// The scene's coordinates, in its order.
+    pub coordinates: Vec<String>,
+    /// The scene's rate columns (`<coordinate>_dot`, or named rates such as `omega_x`).
+    pub rates: Vec<String>,
+    /// The integrator's name.
+    pub integrator: String,
+    /// Its step control.
+    pub step: StepControl,
+    /// The scene's parameters and their values, in the scene's order.
+    pub parameters: Vec<(String, f64)>,
+    /// Column names, as in the CSV header; the first is `t`.
+    pub columns: Vec<String>,
+    /// `values[j][i]`: column `j` at row `i`.
+    pub values: Vec<Vec<f64>>,
+}
+
+impl RunResult {
+    /// A run of scene `info` with `params`: the declaration taken from `info`.
+    #[must_use]
+    pub fn of_scene(
+        info: &tumble_scenarios::SceneInfo,
+        integrator: &str,
+        step: StepControl,
+        params: &tumble_scenarios::Params,
+        columns: Vec<String>,
+        values: Vec<Vec<f64>>,
+    ) -> Self {
+        RunResult {
+            scene: info.name.to_string(),
+            coordinates: info.coordinates.iter().map(|c| (*c).to_string()).collect(),
+            rates: tumble_studies::simulation::rate_columns(info),
+            integrator: integrator.to_string(),
+            step,
+            parameters: params.iter().map(|(k, v)| (k.to_string(), v)).collect(),
+            columns,
+            values,
+        }
+    }
+
+    /// The `simulate --plot` figure: the title names the scene, the integrator and the step
+    /// control, the subtitle the parameters.
+    #[must_use]
+    pub fn figure(&self) -> StackedFigure {
+        let run = Run {
+            columns: &self.columns,
+            values: &self.values,
+            coordinates: &self.coordinates,
+            rates: &self.rates,
+        };
+        let mut figure = figure(
+            format!(
+                "{} — {}, {}",
+                self.scene,
+                self.integrator,
+                step_words(self.step)
+            ),
+            &run,
+        );
+        figure.subtitle =
+            super::labels::parameters(self.parameters.iter().map(|(k, v)| (k.as_str(), *v)));
+        figure
+    }
+}
+
+/// A step control in the words of a run's title: `fixed step dt = 0.001 s`, `tolerance 1e-10`.
 #[must_use]
-pub fn simulation(
-    info: &tumble_scenarios::SceneInfo,
-    integrator: &str,
-    step: &str,
-    params: impl Iterator<Item = (&'static str, f64)>,
-    columns: &[String],
-    values: &[Vec<f64>],
-) -> StackedFigure {
-    let rates = tumble_studies::simulation::rate_columns(info);
-    let run = Run {
-        columns,
-        values,
-        coordinates: info.coordinates,
-        rates: &rates,
-    };
-    let mut figure = figure(format!("{} — {integrator}, {step}", info.name), &run);
-    figure.subtitle = super::labels::parameters(params);
-    figure
+pub fn step_words(step: StepControl) -> String {
+    match step {
+        StepControl::Fixed(h) => format!("fixed step dt = {h} s"),
+        StepControl::Tolerance(tol) => format!("tolerance {}", number(tol)),
+    }
 }
 
 #[cfg(test)]
@@ -249,7 +308,7 @@ mod tests {
         let run = Run {
             columns: &columns,
             values: &values,
-            coordinates: &["qw", "qx", "qy", "qz", "alpha"],
+            coordinates: &["qw", "qx", "qy", "qz", "alpha"].map(String::from),
             rates: &rates,
         };
         let f = figure("free", &run);
@@ -280,7 +339,7 @@ mod tests {
         let run = Run {
             columns: &columns,
             values: &values,
-            coordinates: &["phi", "x", "alpha"],
+            coordinates: &["phi", "x", "alpha"].map(String::from),
             rates: &rates,
         };
         let f = figure("title", &run);
@@ -315,7 +374,7 @@ mod tests {
         let run = Run {
             columns: &columns,
             values: &values,
-            coordinates: &["phi", "x", "alpha"],
+            coordinates: &["phi", "x", "alpha"].map(String::from),
             rates: &rates,
         };
         assert_eq!(figure("title", &run).panels.len(), 5);

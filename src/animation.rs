@@ -9,8 +9,8 @@ use std::path::Path;
 use anyhow::{Context, Result, anyhow, bail};
 use plotters::prelude::*;
 
-use super::{font, text};
 use crate::output;
+use tumble_plot::{font, text};
 
 /// Text over a frame: a title, a caption and labels at device positions.
 pub struct Captions<'a> {
@@ -28,7 +28,7 @@ pub struct Captions<'a> {
 /// # Errors
 /// A drawing error (a font that cannot be loaded).
 pub fn caption(rgb: &mut [u8], size: (u32, u32), scale: f64, captions: &Captions) -> Result<()> {
-    super::register_fonts()?;
+    tumble_plot::register_fonts()?;
     let root = text::ShapedText::new(BitMapBackend::with_buffer(rgb, size)).into_drawing_area();
     (|| -> Result<(), DrawingAreaErrorKind<_>> {
         for (label, at, [r, g, b]) in captions.labels {
