@@ -62,17 +62,8 @@ const N: usize = 8;
 const ALPHA: usize = 6;
 const P_ALPHA: usize = 7;
 
-/// The series of [`super::taylor`]'s intermediate quantities.
-const SIN: usize = 0;
-const COS: usize = 1;
-const SIN2: usize = 2;
-const COS2: usize = 3;
-const WX: usize = 4;
-const WY: usize = 5;
-const WZ: usize = 6;
-const D: usize = 7;
-const W: usize = 8;
-const AUX: usize = 9;
+// The series of the scalar recursions' intermediate quantities, in their order.
+use super::taylor::{AUX, COS, COS2, D, SIN, SIN2, W, WX, WY, WZ};
 
 /// What the map needs from one run of the free hoop.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -68,16 +68,16 @@ struct Series {
 }
 
 /// The series of [`Series::aux`].
-const SIN: usize = 0;
-const COS: usize = 1;
-const SIN2: usize = 2;
-const COS2: usize = 3;
-const WX: usize = 4;
-const WY: usize = 5;
-const WZ: usize = 6;
-const D: usize = 7;
-const W: usize = 8;
-const AUX: usize = 9;
+pub(super) const SIN: usize = 0;
+pub(super) const COS: usize = 1;
+pub(super) const SIN2: usize = 2;
+pub(super) const COS2: usize = 3;
+pub(super) const WX: usize = 4;
+pub(super) const WY: usize = 5;
+pub(super) const WZ: usize = 6;
+pub(super) const D: usize = 7;
+pub(super) const W: usize = 8;
+pub(super) const AUX: usize = 9;
 
 impl Series {
     /// Room for orders `0 ..= order` of `n` components (grown once).
