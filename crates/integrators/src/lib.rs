@@ -112,4 +112,7 @@ pub use stepper::{AdaptiveStepper, DenseOutput, Stepper, Tolerances};
 pub use symplectic::{
     HamiltonianStepper, Splitting, SplittingStepper, StormerVerlet, SymplecticEuler,
 };
-pub use taylor::{Taylor, TaylorError, TaylorOrder, TaylorStepper, TaylorSystem};
+pub use taylor::{
+    DoubleDouble, DoubleDoubleSystem, DoubleDoubleTaylorStepper, Taylor, TaylorError, TaylorOrder,
+    TaylorStepper, TaylorSystem,
+};

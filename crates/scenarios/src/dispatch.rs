@@ -15,6 +15,7 @@
 //! |---|---|---|
 //! | [`ProblemKind::Ode`] | `y' = f(t, y)` on ℝⁿ (a flattened model) | explicit Runge–Kutta, Gauss–Legendre |
 //! | [`ProblemKind::TaylorSeries`] | `y' = f(t, y)` on ℝⁿ computing its Taylor coefficients ([`TaylorSystem`]) | the Taylor methods |
+//! | [`ProblemKind::DoubleDoubleTaylorSeries`] | the same, its coefficients also in double-double ([`TaylorSystem::double_double`]) | `taylor-dd` |
 //! | [`ProblemKind::RigidBody`] | [`RigidBody`] on SO(3) × ℝ³ | LGVI and its compositions (orders 4–10), principal-axis splittings, exact-flow splitting |
 //! | [`ProblemKind::FreeRigidBody`] | [`FreeRigidBody`] | discrete Moser–Veselov, the exact flow |
 //! | [`ProblemKind::LieVectorField`] | Euler's equations as a vector field on SO(3) × ℝ³ | RKMK, Crouch–Grossman |
@@ -241,7 +242,10 @@ where
     P: TaylorSystem,
     O: Observer<SVector<f64, S>>,
 {
-    if plan.kind != ProblemKind::TaylorSeries {
+    if !matches!(
+        plan.kind,
+        ProblemKind::TaylorSeries | ProblemKind::DoubleDoubleTaylorSeries
+    ) {
         return Err(no_stepper(plan, plan.kind.name()));
     }
     let y0 = *y;

@@ -13,7 +13,7 @@
 //! Nørsett & Wanner, *Solving ODEs I*, §II.4). For a method of order `p` at half the step
 //! `R = 2ᵖ`; for an adaptive method of order `p`, whose global error goes as `tol^{p/(p+1)}`
 //! (ibid. §II.4, tolerance proportionality), `R = 100^{p/(p+1)}`. The exact flow's only error
-//! is round-off: its estimate is the difference itself.
+//! is round-off: its estimate is the round-off level (below).
 //!
 //! # Whether to trust it
 //!
@@ -25,7 +25,8 @@
 //! * `r ≥ √R` (at least half the expected order): **trustworthy**; `R` is taken as `min(r, R)`,
 //!   so that an order observed below the nominal one enlarges the estimate.
 //! * `r < √R` and `d` at the round-off level of the runs (`ROUND_OFF · ε · √steps`, with `ε`
-//!   the unit round-off and `steps` the companion's): **round-off** — both runs sit on
+//!   the unit round-off and `steps` the companion's; `ε` for `taylor-dd`, whose rows are its
+//!   double-double state rounded once): **round-off** — both runs sit on
 //!   round-off, and the estimate is that level, not a convergent error.
 //! * `r < √R`, an adaptive run, and `d` below its tolerance: **within the tolerance** — the run
 //!   is as good as it claims, but the check cannot confirm the order (the steps of a nearly
@@ -52,8 +53,8 @@
 //! times (`|Δt| / (1 + |t|)`) counts with the states'.
 
 use rayon::join;
-use tumble_integrators::Flow;
 use tumble_integrators::registry::Order;
+use tumble_integrators::{Flow, ProblemKind};
 use tumble_scenarios::params::Params;
 use tumble_scenarios::scene::{
     DenseRows, FinalState, Recorder, RunPlan, RunSummary, Scene, SceneInfo, StepControl,
@@ -525,7 +526,12 @@ pub fn estimate(
         || check_plan.map(|p| p.and_then(|p| compare(scene, params, &p, rows, events))),
     );
     let fine = fine.map_err(|e| format!("the companion run ({}) failed: {e}", words(companion)))?;
-    let round_off = ROUND_OFF * f64::EPSILON * (fine.summary.steps.max(1) as f64).sqrt();
+    // A method that carries its state in double-double rounds it to `f64` only in the rows.
+    let round_off = if method.problems == [ProblemKind::DoubleDoubleTaylorSeries] {
+        f64::EPSILON
+    } else {
+        ROUND_OFF * f64::EPSILON * (fine.summary.steps.max(1) as f64).sqrt()
+    };
     let all_fine = largest(&fine.diffs, |_| true).map_or(0.0, |(_, v)| v);
     let d_fine = all_fine.max(fine.final_diff);
     let mut steps = fine.summary.steps;
@@ -597,6 +603,12 @@ pub fn estimate(
     } else {
         (max_row, rows.time(max_i))
     };
+    // Round-off: the estimate is the round-off level (or the difference, when larger).
+    let (final_error, max_error) = if matches!(trust, Trust::RoundOff) {
+        (fine.final_diff.max(round_off), max_error.max(round_off))
+    } else {
+        (factor * fine.final_diff, factor * max_error)
+    };
     let matched = fine.diffs.iter().filter(|d| !d.is_nan()).count() as u64;
     let final_is_kept = rows.kept() > 0
         && same_time(rows.time(rows.kept() - 1), rows.last[0])
@@ -604,8 +616,8 @@ pub fn estimate(
     Ok(ErrorEstimate {
         companion,
         check,
-        final_error: factor * fine.final_diff,
-        max_error: factor * max_error,
+        final_error,
+        max_error,
         max_error_t,
         rows_compared: matched + u64::from(!final_is_kept),
         rows_written: rows.written,
@@ -624,6 +636,10 @@ pub fn estimate(
 pub fn words(step: StepControl) -> String {
     match step {
         StepControl::Fixed(h) => format!("dt = {}", crate::simulation::number(h)),
-        StepControl::Tolerance(t) => format!("tol = {}", crate::simulation::number(t)),
+        // A tolerance scaled by 100 for the check (1e-30 · 100) shows as the round number.
+        StepControl::Tolerance(t) => format!(
+            "tol = {}",
+            crate::simulation::number(format!("{t:.12e}").parse().unwrap_or(t))
+        ),
     }
 }

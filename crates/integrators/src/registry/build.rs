@@ -28,7 +28,7 @@ use crate::state::{State, VectorState};
 use crate::stepper::{AdaptiveStepper, DenseOutput, Stepper};
 use crate::symplectic::{Splitting, SplittingStepper, StormerVerlet, SymplecticEuler};
 use crate::tables::GaussTableau;
-use crate::taylor::{Taylor, TaylorOrder, TaylorSystem};
+use crate::taylor::{DoubleDoubleTaylorStepper, Taylor, TaylorOrder, TaylorSystem};
 
 use super::{BaseStepper, ExplicitVisitor, GaussVisitor, MethodInfo, ProblemKind, Stepping};
 
@@ -118,12 +118,15 @@ pub fn ode<P: Ode<Y>, Y: VectorState, R: ReceiveOde<P, Y>>(
         | Stepping::ExactSplitting
         | Stepping::Dmv
         | Stepping::ExactFlow
-        | Stepping::Taylor(_) => NoStepper::of(method, ProblemKind::Ode),
+        | Stepping::Taylor(_)
+        | Stepping::TaylorDoubleDouble => NoStepper::of(method, ProblemKind::Ode),
     }
 }
 
 /// Builds `method`'s stepper for a first-order ODE that computes its Taylor coefficients
-/// ([`ProblemKind::TaylorSeries`]), on states shaped like `y0`, and hands it to `receiver`.
+/// ([`ProblemKind::TaylorSeries`]; in double-double for `taylor-dd`,
+/// [`ProblemKind::DoubleDoubleTaylorSeries`]), on states shaped like `y0`, and hands it to
+/// `receiver`.
 ///
 /// # Errors
 /// [`NoStepper`] when the method is not a Taylor method.
@@ -140,6 +143,7 @@ pub fn taylor<P: TaylorSystem + ?Sized, Y: VectorState, R: ReceiveOde<P, Y>>(
                 TaylorOrder::Fixed(_) => receiver.interpolating(stepper),
             })
         }
+        Stepping::TaylorDoubleDouble => Ok(receiver.adaptive(DoubleDoubleTaylorStepper::new(y0))),
         Stepping::Explicit(_)
         | Stepping::Gauss(_)
         | Stepping::SymplecticEuler
@@ -194,7 +198,8 @@ pub fn rigid_body<B: RigidBody + ?Sized, R: Receive<B, RigidBodyState>>(
         | Stepping::Cg3
         | Stepping::Dmv
         | Stepping::ExactFlow
-        | Stepping::Taylor(_) => NoStepper::of(method, ProblemKind::RigidBody),
+        | Stepping::Taylor(_)
+        | Stepping::TaylorDoubleDouble => NoStepper::of(method, ProblemKind::RigidBody),
     }
 }
 
@@ -221,7 +226,8 @@ pub fn free_rigid_body<R: Receive<FreeRigidBody, RigidBodyState>>(
         | Stepping::Cg3
         | Stepping::PrincipalAxisSplitting
         | Stepping::ExactSplitting
-        | Stepping::Taylor(_) => NoStepper::of(method, ProblemKind::FreeRigidBody),
+        | Stepping::Taylor(_)
+        | Stepping::TaylorDoubleDouble => NoStepper::of(method, ProblemKind::FreeRigidBody),
     }
 }
 
@@ -252,7 +258,8 @@ where
         | Stepping::ExactSplitting
         | Stepping::Dmv
         | Stepping::ExactFlow
-        | Stepping::Taylor(_) => NoStepper::of(method, ProblemKind::LieVectorField),
+        | Stepping::Taylor(_)
+        | Stepping::TaylorDoubleDouble => NoStepper::of(method, ProblemKind::LieVectorField),
     }
 }
 
@@ -295,7 +302,8 @@ where
         | Stepping::ExactSplitting
         | Stepping::Dmv
         | Stepping::ExactFlow
-        | Stepping::Taylor(_) => NoStepper::of(method, ProblemKind::CoupledRigidBody),
+        | Stepping::Taylor(_)
+        | Stepping::TaylorDoubleDouble => NoStepper::of(method, ProblemKind::CoupledRigidBody),
     }
 }
 
@@ -334,7 +342,8 @@ where
         | Stepping::ExactSplitting
         | Stepping::Dmv
         | Stepping::ExactFlow
-        | Stepping::Taylor(_) => NoStepper::of(method, ProblemKind::Separable),
+        | Stepping::Taylor(_)
+        | Stepping::TaylorDoubleDouble => NoStepper::of(method, ProblemKind::Separable),
     }
 }
 
@@ -364,7 +373,8 @@ where
         | Stepping::ExactSplitting
         | Stepping::Dmv
         | Stepping::ExactFlow
-        | Stepping::Taylor(_) => NoStepper::of(method, ProblemKind::Split),
+        | Stepping::Taylor(_)
+        | Stepping::TaylorDoubleDouble => NoStepper::of(method, ProblemKind::Split),
     }
 }
 

@@ -121,6 +121,9 @@ pub enum ProblemKind {
     /// A first-order system that computes the normalized Taylor coefficients of its solution
     /// through a point ([`crate::TaylorSystem`]).
     TaylorSeries,
+    /// A [`ProblemKind::TaylorSeries`] that also computes its coefficients in double-double
+    /// arithmetic ([`crate::TaylorSystem::double_double`]).
+    DoubleDoubleTaylorSeries,
 }
 
 impl ProblemKind {
@@ -136,6 +139,7 @@ impl ProblemKind {
             ProblemKind::FreeRigidBody => "free-rigid-body",
             ProblemKind::CoupledRigidBody => "coupled-rigid-body",
             ProblemKind::TaylorSeries => "taylor-series",
+            ProblemKind::DoubleDoubleTaylorSeries => "taylor-series-dd",
         }
     }
 }
@@ -521,6 +525,11 @@ pub const ROWS: &[MethodInfo] = &[
         "taylor",
         Stepping::Taylor(TaylorOrder::FromTolerance),
         "Taylor series by automatic differentiation, order p = ceil(-ln(eps)/2 + 1) and step from the last two coefficients (Jorba & Zou 2005), the step's polynomial as dense output",
+    ),
+    MethodInfo::new(
+        "taylor-dd",
+        Stepping::TaylorDoubleDouble,
+        "the Taylor method of `taylor` with its state, coefficients and sums in double-double arithmetic (about 32 digits; Dekker 1971): errors to about 1e-30, the references' method",
     ),
     MethodInfo::new(
         "taylor8",

@@ -62,6 +62,9 @@ pub enum Stepping {
     /// A Taylor-series method ([`crate::TaylorStepper`]) on a problem that computes its Taylor
     /// coefficients: order from the tolerance or fixed.
     Taylor(crate::taylor::TaylorOrder),
+    /// The adaptive Taylor method in double-double arithmetic
+    /// ([`crate::taylor::DoubleDoubleTaylorStepper`]).
+    TaylorDoubleDouble,
 }
 
 /// A symmetric method of order 2 that the composition tables compose.
@@ -249,6 +252,8 @@ pub(super) const ODE: &str = "first-order ODE y' = f(t, y)";
 const SEPARABLE: &str = "separable Hamiltonian H = T(p) + V(q)";
 const TAYLOR: &str =
     "first-order ODE whose Taylor coefficients the problem computes (automatic differentiation)";
+const TAYLOR_DD: &str =
+    "first-order ODE whose Taylor coefficients the problem computes in double-double arithmetic";
 const FREE_BODY: &str = "free rigid body (inertia J)";
 const LIE_FIELD: &str = "vector field on SO(3) × R^n: R' = R hat(xi(t, R, y)), y' = f(t, R, y)";
 
@@ -272,7 +277,9 @@ impl Stepping {
             | Stepping::ExactSplitting
             | Stepping::Dmv => 2,
             Stepping::Taylor(TaylorOrder::Fixed(p)) => p,
-            Stepping::Taylor(TaylorOrder::FromTolerance) => return Order::Variable,
+            Stepping::Taylor(TaylorOrder::FromTolerance) | Stepping::TaylorDoubleDouble => {
+                return Order::Variable;
+            }
             Stepping::ExactFlow => return Order::Exact,
         })
     }
@@ -294,7 +301,8 @@ impl Stepping {
             | Stepping::ExactSplitting
             | Stepping::Dmv
             | Stepping::ExactFlow
-            | Stepping::Taylor(_) => 1,
+            | Stepping::Taylor(_)
+            | Stepping::TaylorDoubleDouble => 1,
         }
     }
 
@@ -316,7 +324,7 @@ impl Stepping {
                 Family::Splitting
             }
             Stepping::ExactFlow => Family::ExactFlow,
-            Stepping::Taylor(_) => Family::Taylor,
+            Stepping::Taylor(_) | Stepping::TaylorDoubleDouble => Family::Taylor,
         }
     }
 
@@ -344,7 +352,7 @@ impl Stepping {
                 exact: true,
                 ..LIE_SYMPLECTIC_EXPLICIT
             },
-            Stepping::Taylor(TaylorOrder::FromTolerance) => ADAPTIVE,
+            Stepping::Taylor(TaylorOrder::FromTolerance) | Stepping::TaylorDoubleDouble => ADAPTIVE,
             Stepping::Taylor(TaylorOrder::Fixed(_)) => EXPLICIT,
         }
     }
@@ -364,6 +372,7 @@ impl Stepping {
             Stepping::Rkmk4 | Stepping::Cg3 => LIE_FIELD,
             Stepping::Dmv | Stepping::ExactFlow => FREE_BODY,
             Stepping::Taylor(_) => TAYLOR,
+            Stepping::TaylorDoubleDouble => TAYLOR_DD,
         }
     }
 
@@ -382,6 +391,7 @@ impl Stepping {
             Stepping::Rkmk4 | Stepping::Cg3 => &[ProblemKind::LieVectorField],
             Stepping::Dmv | Stepping::ExactFlow => &[ProblemKind::FreeRigidBody],
             Stepping::Taylor(_) => &[ProblemKind::TaylorSeries],
+            Stepping::TaylorDoubleDouble => &[ProblemKind::DoubleDoubleTaylorSeries],
         }
     }
 }

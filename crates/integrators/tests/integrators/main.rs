@@ -23,4 +23,5 @@ mod rigid_body_orders;
 mod rigid_body_problems;
 mod special_functions;
 mod tables_as_data;
+mod taylor_double_double;
 mod taylor_method;

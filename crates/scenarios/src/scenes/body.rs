@@ -19,7 +19,7 @@
 //! (`[parameters]`, `--set`).
 
 use nalgebra::{Rotation3, Vector3};
-use tumble_integrators::rigid::{FreeRigidBody, HeavyTop, RigidBodyState};
+use tumble_integrators::rigid::{FreeRigidBody, HeavyTop, RigidBodyState, TaylorHeavyTop};
 use tumble_kinematics::EulerConvention;
 
 use super::rigid::{
@@ -258,7 +258,17 @@ impl Scene for BodyScene {
         let info = self.info();
         if self.0 == BodySceneKind::HeavyTop {
             let (top, q, s0) = Self::top_and_state(params)?;
-            return run_rigid(info, top, None, s0, None, *q.matrix(), plan, recorder);
+            return run_rigid(
+                info,
+                top,
+                None,
+                &TaylorHeavyTop::new(&top),
+                s0,
+                None,
+                *q.matrix(),
+                plan,
+                recorder,
+            );
         }
         let (body, q, s0) = Self::free_body_and_state(params)?;
         check_momentum(
@@ -274,6 +284,7 @@ impl Scene for BodyScene {
             info,
             body,
             Some(body),
+            &TaylorHeavyTop::free(&body),
             s0,
             Some(exact),
             *q.matrix(),

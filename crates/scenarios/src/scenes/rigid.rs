@@ -144,12 +144,15 @@ fn write_row<B: RigidBody>(
 const ENERGY_COLUMN: usize = 8;
 
 /// Runs a rigid body with the plan's method; `free` is the same body as a [`FreeRigidBody`]
-/// when it is torque-free (the scene then offers [`ProblemKind::FreeRigidBody`]).
+/// when it is torque-free (the scene then offers [`ProblemKind::FreeRigidBody`]), `taylor`
+/// the same body's Taylor coefficients (for `taylor`, `taylor8`, … and `taylor-dd`).
 /// `frame` as in [`write_row`].
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn run_rigid<B: RigidBody + Copy>(
     info: &'static SceneInfo,
     body: B,
     free: Option<FreeRigidBody>,
+    taylor: &TaylorHeavyTop,
     s0: RigidBodyState,
     exact: Option<ExactFlow>,
     frame: Matrix3<f64>,
@@ -161,6 +164,22 @@ pub(crate) fn run_rigid<B: RigidBody + Copy>(
     let mut row = move |t: f64, s: &RigidBodyState, out: &mut [f64]| {
         write_row(&body, exact.as_ref(), &frame, t, s, &mut previous, out);
     };
+    if matches!(
+        plan.kind,
+        ProblemKind::TaylorSeries | ProblemKind::DoubleDoubleTaylorSeries
+    ) {
+        // The Taylor methods on the hand-written coefficients of Euler's equations.
+        return crate::scene::run_taylor_vector(
+            taylor,
+            flatten(&s0),
+            plan,
+            columns,
+            ENERGY_COLUMN,
+            |t, y, out| row(t, &unflatten(y), out),
+            &mut [],
+            recorder,
+        );
+    }
     if plan.kind == ProblemKind::Ode {
         return run_vector(
             &FlatRigidBody(body),
@@ -185,6 +204,8 @@ pub(crate) const FREE_BODY_PROBLEMS: &[ProblemKind] = &[
     ProblemKind::RigidBody,
     ProblemKind::LieVectorField,
     ProblemKind::Ode,
+    ProblemKind::TaylorSeries,
+    ProblemKind::DoubleDoubleTaylorSeries,
 ];
 
 /// The heavy top's kinds of problem.
@@ -192,6 +213,8 @@ pub(crate) const HEAVY_TOP_PROBLEMS: &[ProblemKind] = &[
     ProblemKind::RigidBody,
     ProblemKind::LieVectorField,
     ProblemKind::Ode,
+    ProblemKind::TaylorSeries,
+    ProblemKind::DoubleDoubleTaylorSeries,
 ];
 
 pub(crate) const fn spec(
@@ -413,6 +436,7 @@ impl Scene for FreeBodyScene {
             info,
             body,
             Some(body),
+            &TaylorHeavyTop::free(&body),
             s0,
             Some(exact),
             Matrix3::identity(),
@@ -465,7 +489,7 @@ pub static DZHANIBEKOV: SceneInfo = SceneInfo {
     needs_dense_output: false,
     default_integrator: "exact",
     default_step: 1e-3,
-    default_error: 0.0,
+    default_error: 1.8e-14,
     default_t_end: 10.0,
     diagnostics: &["energy", "energy_rel_err", "Lx", "Ly", "Lz", "exact_err"],
     rate_names: &["omega_x", "omega_y", "omega_z"],
@@ -556,6 +580,7 @@ impl Scene for DzhanibekovScene {
             info,
             body,
             Some(body),
+            &TaylorHeavyTop::free(&body),
             s0,
             Some(exact),
             Matrix3::identity(),
@@ -624,12 +649,7 @@ pub static HEAVY_TOP: SceneInfo = SceneInfo {
     parameters: &HEAVY_TOP_SPECS,
     conserved: &["energy", "Lz", "L . e3 (symmetric top)"],
     oracle: "energy H = 1269.975 conserved; Lz and the spin L . (R e3) conserved",
-    problems: &[
-        ProblemKind::RigidBody,
-        ProblemKind::LieVectorField,
-        ProblemKind::Ode,
-        ProblemKind::TaylorSeries,
-    ],
+    problems: HEAVY_TOP_PROBLEMS,
     needs_dense_output: false,
     default_integrator: "vern9",
     default_step: 1e-3,
@@ -707,34 +727,11 @@ impl Scene for HeavyTopScene {
     ) -> Result<RunSummary, SceneError> {
         let info = self.info();
         let (top, s0) = Self::top_and_state(params)?;
-        if plan.kind == ProblemKind::TaylorSeries {
-            // The Taylor method on the hand-written coefficients of Euler's equations.
-            let mut previous = None;
-            return crate::scene::run_taylor_vector(
-                &TaylorHeavyTop::new(&top),
-                flatten(&s0),
-                plan,
-                info.columns().len(),
-                ENERGY_COLUMN,
-                |t, y, out| {
-                    write_row(
-                        &top,
-                        None,
-                        &Matrix3::identity(),
-                        t,
-                        &unflatten(y),
-                        &mut previous,
-                        out,
-                    );
-                },
-                &mut [],
-                recorder,
-            );
-        }
         run_rigid(
             info,
             top,
             None,
+            &TaylorHeavyTop::new(&top),
             s0,
             None,
             Matrix3::identity(),

@@ -20,6 +20,10 @@
 //!
 //! # The reference
 //!
+//! A scene the Taylor method runs in double-double arithmetic (`taylor-dd`: the rigid bodies,
+//! `free-body`, `dzhanibekov`, `heavy-top` and the bodies of scene files): that method at
+//! tolerance `1e-30`, whose final state is the solution rounded to `f64`, checked against itself
+//! at `1e-26` and against what would otherwise be the reference (below). Otherwise, for
 //! `free-body` and `dzhanibekov`: the exact flow (Jacobi elliptic functions and Carlson's
 //! `R_J`; `exact` in the registry). Otherwise the highest Gauss–Legendre method the scene takes
 //! at a step 16 times below the scene's default, cross-checked against DOP853 at tolerance
@@ -383,7 +387,32 @@ pub fn reference_within(
         }
         final_state(scene, params, &plan).map(|(s, _)| s)
     };
-    let state = run(method, control)?;
+    let checked = run(method, control)?;
+    let double_double = registry::find(DOUBLE_DOUBLE_REFERENCE.0)
+        .ok()
+        .filter(|m| info.kind_for(m).is_some());
+    if let Some(dd) = double_double {
+        // The double-double Taylor method, checked by what would otherwise be the reference
+        // (which stays the reference if it fails, e.g. on the time limit of a long horizon).
+        let reference = StepControl::Tolerance(DOUBLE_DOUBLE_REFERENCE.1);
+        let again = StepControl::Tolerance(DOUBLE_DOUBLE_REFERENCE.2);
+        let runs = run(dd.name, reference).and_then(|s| Ok((s, run(dd.name, again)?)));
+        if let Ok((state, repeated)) = runs {
+            return Ok(Reference {
+                agreement: state_error(info, &checked, &state),
+                self_agreement: state_error(info, &repeated, &state),
+                state,
+                method: describe(dd.name, reference),
+                check: if exact.is_some() {
+                    "exact flow (one step over the horizon)".to_string()
+                } else {
+                    describe(method, control)
+                },
+                self_check: describe(dd.name, again),
+            });
+        }
+    }
+    let state = checked;
     let checked = run(check, check_control)?;
     let agreement = state_error(info, &checked, &state);
     let (self_check, self_agreement) = match self_control {
@@ -406,6 +435,10 @@ pub fn reference_within(
         self_agreement,
     })
 }
+
+/// The reference method where a scene offers it, its tolerance, and the tolerance of its
+/// self-check (module doc).
+const DOUBLE_DOUBLE_REFERENCE: (&str, f64, f64) = ("taylor-dd", 1e-30, 1e-26);
 
 /// `h` adjusted down so that a whole number of steps fits the horizon.
 pub(crate) fn refine_step(h: f64, t_end: f64) -> f64 {
@@ -573,6 +606,14 @@ pub fn ladder(
         }
     };
     let adaptive = method.properties.adaptive;
+    // The last rung of an adaptive method: tolerance 1e-15, or 1e-20 for a Taylor method (its
+    // tolerance bounds each step's error against the largest component of the state, so the
+    // smaller components need a tighter one to reach the same error; its order grows with it).
+    let last_rung = if method.family == Family::Taylor {
+        36
+    } else {
+        26
+    };
     // Rung k: a tolerance 10^{-(2 + k/2)}, or n_k = n₀ r^k steps from a start coarse enough.
     let control_at = |k: i32, n0: f64| {
         if adaptive {
@@ -650,8 +691,11 @@ pub fn ladder(
             out.stop = format!("a run took more than {} steps", config.max_steps);
             break;
         }
-        if adaptive && k > 26 {
-            out.stop = "tolerance 1e-15 reached".into();
+        if adaptive && k > last_rung {
+            out.stop = format!(
+                "tolerance {:.0e} reached",
+                10f64.powf(-2.0 - f64::from(last_rung) / 2.0)
+            );
             break;
         }
     }

@@ -148,15 +148,24 @@ fn every_scene_runs_with_every_applicable_integrator() {
     }
 }
 
-/// The references agree with their independent cross-checks: the exact flow with DOP853 at
-/// 1e-13 (free body), Gauss–Legendre s = 6 with DOP853 and with itself at half the step
-/// (free hoop).
+/// The references agree with their independent cross-checks: the double-double Taylor method
+/// with the exact flow (free body) and with Gauss–Legendre s = 6 (heavy top) to round-off, and
+/// with itself at a looser tolerance to the last bit; Gauss–Legendre s = 6 with DOP853 and
+/// with itself at half the step (free hoop).
 #[test]
 fn references_agree_with_their_cross_checks() {
     let body = find("free-body").unwrap();
     let r = work_precision::reference(body, &body.info().default_params(), 5.0).unwrap();
-    assert!(r.method.starts_with("exact"), "{r:?}");
-    assert!(r.agreement <= 1e-11, "{r:?}");
+    assert!(r.method.starts_with("taylor-dd"), "{r:?}");
+    assert!(r.check.starts_with("exact"), "{r:?}");
+    assert!(r.agreement <= 1e-15, "{r:?}");
+    assert!(r.self_agreement <= 2.0 * f64::EPSILON, "{r:?}");
+    let top = find("heavy-top").unwrap();
+    let r = work_precision::reference(top, &top.info().default_params(), 2.0).unwrap();
+    assert!(r.method.starts_with("taylor-dd"), "{r:?}");
+    assert!(r.check.starts_with("gauss12"), "{r:?}");
+    assert!(r.agreement <= 1e-13, "{r:?}");
+    assert!(r.self_agreement <= 2.0 * f64::EPSILON, "{r:?}");
     let hoop = find("free-hoop").unwrap();
     let r = work_precision::reference(hoop, &hoop.info().default_params(), 2.0).unwrap();
     assert!(r.method.starts_with("gauss12"), "{r:?}");

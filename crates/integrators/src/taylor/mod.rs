@@ -13,6 +13,17 @@
 //! - A. Griewank, A. Walther, *Evaluating Derivatives*, 2nd ed., SIAM 2008, ch. 13.
 //! - À. Jorba, M. Zou, *A software package for the numerical integration of ODEs by means of
 //!   high-order Taylor methods*, Experimental Mathematics 14 (2005) 99–117.
+//!
+//! # Double-double
+//! A system that can also compute its coefficients in double-double arithmetic (a value as the
+//! unevaluated sum of two `f64`, about 32 significant digits; [`DoubleDouble`]) says so through
+//! [`TaylorSystem::double_double`]; the method `taylor-dd` ([`DoubleDoubleTaylorStepper`]) then
+//! carries the state in double-double, so that its error is set by its tolerance down to about
+//! `1e-30` and not by the round-off of `f64`: the references other methods are measured against.
+
+mod double_double;
+
+pub use double_double::{DoubleDouble, DoubleDoubleTaylorStepper, SeriesScalar};
 
 /// Why a [`TaylorSystem`] could not give its coefficients.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
@@ -34,6 +45,10 @@ pub enum TaylorError {
         /// What is singular.
         reason: &'static str,
     },
+    /// The method asks for double-double coefficients and the system has none
+    /// ([`TaylorSystem::double_double`]).
+    #[error("the system computes no Taylor coefficients in double-double arithmetic")]
+    NoDoubleDouble,
 }
 
 /// An ODE `x' = F(t, x)` on ℝⁿ that computes the normalized Taylor coefficients of its
@@ -63,6 +78,29 @@ pub trait TaylorSystem {
         order: usize,
         coeffs: &mut [f64],
     ) -> Result<(), TaylorError>;
+
+    /// The same system computing its coefficients in double-double arithmetic, when it can
+    /// (its kind is then also [`crate::ProblemKind::DoubleDoubleTaylorSeries`]); `None` by
+    /// default.
+    fn double_double(&self) -> Option<&dyn DoubleDoubleSystem> {
+        None
+    }
+}
+
+/// A [`TaylorSystem`]'s coefficients in double-double arithmetic ([`DoubleDouble`]).
+pub trait DoubleDoubleSystem {
+    /// As [`TaylorSystem::coefficients`], every value a double-double: the coefficients
+    /// `xₖ`, `k = 0 ..= order`, of the solution through `(t0, x0)` into `coeffs[k * n + i]`.
+    ///
+    /// # Errors
+    /// As [`TaylorSystem::coefficients`].
+    fn coefficients_dd(
+        &self,
+        t0: DoubleDouble,
+        x0: &[DoubleDouble],
+        order: usize,
+        coeffs: &mut [DoubleDouble],
+    ) -> Result<(), TaylorError>;
 }
 
 impl<T: TaylorSystem + ?Sized> TaylorSystem for &T {
@@ -78,6 +116,9 @@ impl<T: TaylorSystem + ?Sized> TaylorSystem for &T {
     ) -> Result<(), TaylorError> {
         (**self).coefficients(t0, x0, order, coeffs)
     }
+    fn double_double(&self) -> Option<&dyn DoubleDoubleSystem> {
+        (**self).double_double()
+    }
 }
 
 /// The first non-finite coefficient of `coeffs[..(order + 1) n]`, as the error
@@ -85,7 +126,11 @@ impl<T: TaylorSystem + ?Sized> TaylorSystem for &T {
 ///
 /// # Errors
 /// [`TaylorError::NonFinite`] naming it.
-pub fn check_finite(coeffs: &[f64], n: usize, order: usize) -> Result<(), TaylorError> {
+pub fn check_finite<S: SeriesScalar>(
+    coeffs: &[S],
+    n: usize,
+    order: usize,
+) -> Result<(), TaylorError> {
     match coeffs[..(order + 1) * n]
         .iter()
         .position(|c| !c.is_finite())
