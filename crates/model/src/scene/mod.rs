@@ -27,6 +27,7 @@ use std::path::Path;
 use std::sync::{Mutex, OnceLock};
 
 use tumble_integrators::ProblemKind;
+use tumble_scenarios::drawing::{Drawing, Placed};
 use tumble_scenarios::{
     ParamSpec, Params, Recorder, RunPlan, RunSummary, Scene, SceneError, SceneInfo,
 };
@@ -314,6 +315,17 @@ fn symmetries(model: &Model) -> (Vec<bool>, bool) {
 impl Scene for ModelScene {
     fn info(&self) -> &'static SceneInfo {
         self.info
+    }
+
+    /// The model's bodies and point masses ([`ModelScene::view`]).
+    fn drawing(&self, params: &Params) -> Option<Result<Drawing, SceneError>> {
+        Some(Ok(self.view(params)))
+    }
+
+    /// Where the bodies and point masses are, by the model's own expressions
+    /// ([`ModelScene::poses`]).
+    fn placements(&self, params: &Params, rows: &[Vec<f64>]) -> Vec<Placed> {
+        self.poses(params, rows)
     }
 
     fn simulate(
