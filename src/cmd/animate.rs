@@ -115,13 +115,12 @@ pub fn run(args: &Args) -> Result<()> {
         let path = std::path::Path::new(&args.target.scene);
         let (record_path, record) = tumble_plot::saved::run_record(path)?;
         let (scene, params) = record.scene.scene(&record_path)?;
-        let drawing = super::view::drawing_of(None, scene.info().name, &params)?;
+        let drawing = super::view::drawing_of(None, scene, &params)?;
         let saved = tumble_plot::saved::read_columns(path)?;
         (scene, params, Some((saved, record)), drawing)
     } else {
         let LoadedScene { scene, params, .. } = load_scene(&args.target)?;
-        let drawing =
-            super::view::drawing_of(Some(&args.target.scene), scene.info().name, &params)?;
+        let drawing = super::view::drawing_of(Some(&args.target.scene), scene, &params)?;
         (scene, params, None, drawing)
     };
     let info = scene.info();

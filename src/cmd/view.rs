@@ -10,7 +10,7 @@ use std::path::PathBuf;
 use anyhow::{Result, bail};
 use clap::ArgMatches;
 use tumble_scenarios::scene::Rows;
-use tumble_scenarios::{Params, drawing};
+use tumble_scenarios::{Params, Scene, drawing};
 use tumble_studies::simulation::{self, Naming, RunRequest, is_scene_file};
 
 use super::inertia::BodyArgs;
@@ -109,7 +109,7 @@ fn run_view(args: &Args) -> Result<()> {
     };
     let loaded = load_scene(&target)?;
     let info = loaded.scene.info();
-    let drawing = drawing_of(Some(scene_arg), info.name, &loaded.params)?;
+    let drawing = drawing_of(Some(scene_arg), loaded.scene, &loaded.params)?;
     let request = RunRequest {
         integrator: args.integrator.clone(),
         t_end: args.t_end,
@@ -223,22 +223,24 @@ fn explorer(args: &Args, matches: Option<&ArgMatches>) -> Result<()> {
     Ok(())
 }
 
-/// The drawing of a run: a model file's bodies and point masses, a scene file's `[body]`
-/// when `scene_arg` names a scene file with one, else the built-in scene `name`'s.
+/// The drawing of a run: a scene file's `[body]` when `scene_arg` names a scene file with
+/// one, else what `scene` declares ([`Drawing::of_scene`]: a model's bodies and point masses,
+/// a built-in scene's bodies).
 ///
 /// # Errors
 /// A scene file that cannot be read, a scene with no 3D view.
-pub fn drawing_of(scene_arg: Option<&str>, name: &str, params: &Params) -> Result<Drawing> {
+pub fn drawing_of(
+    scene_arg: Option<&str>,
+    scene: &'static dyn Scene,
+    params: &Params,
+) -> Result<Drawing> {
     if let Some(path) = scene_arg
         .filter(|a| is_scene_file(a))
         .map(std::path::Path::new)
+        .filter(|path| !tumble_model::is_model_file(path))
+        && let Some(body) = drawing::of_scene_file(path)?
     {
-        if tumble_model::is_model_file(path) {
-            return Ok(Drawing::of_model(tumble_model::load(path)?, params));
-        }
-        if let Some(body) = drawing::of_scene_file(path)? {
-            return Ok(Drawing::of_body(&body, params));
-        }
+        return Ok(Drawing::of_body(&body, params));
     }
-    Drawing::of_builtin(name, params)
+    Drawing::of_scene(scene, params)
 }

@@ -60,7 +60,7 @@ pub fn data(
         "principal_axes": rows(principal.axes.matrix()),
         "principal_euler": snaps,
         "start": triple(start),
-        "parts": geometry::parts(parts, &c).iter().map(geometry::Piece::json).collect::<Vec<_>>(),
+        "parts": geometry::parts(parts, &c).iter().map(geometry::Render::json).collect::<Vec<_>>(),
         "reach": geometry::reach(parts, &c),
         "sources": sources,
     })

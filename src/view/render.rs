@@ -11,7 +11,7 @@
 
 use nalgebra::{UnitQuaternion, Vector3};
 
-use super::geometry::{Form, Piece, Triangle};
+use super::geometry::{Form, Piece, Render, Triangle};
 use super::run::{Drawing, Frames};
 
 /// Okabe–Ito colours of the x, y, z axes (as the page's `AXIS_COLOURS`).

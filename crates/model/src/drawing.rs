@@ -1,10 +1,15 @@
-//! Where a model's bodies and point masses are at each row of a run, and their mass properties
-//! at the run's parameters: what `tumble view` and `tumble animate` draw. The positions and
-//! orientations are the model's own expressions ([`crate::file::ModelDrawing`]), evaluated on
-//! an instruction tape from the rows' time, coordinates and rates.
+//! What `tumble view` and `tumble animate` draw of a model ([`ModelScene::view`], the model's
+//! [`Scene::drawing`](tumble_scenarios::Scene::drawing)): its bodies (their `geometry`, or the
+//! body with their mass properties) and point masses at the run's parameters, and where they
+//! are at each row of a run ([`ModelScene::poses`]). The positions and orientations are the
+//! model's own expressions ([`crate::file::ModelDrawing`]), evaluated on an instruction tape
+//! from the rows' time, coordinates and rates.
 
+use nalgebra::{Matrix3, Point3, UnitQuaternion, Vector3};
 use tumble_scenarios::Params;
-use tumble_scenarios::drawing::Part;
+use tumble_scenarios::drawing::{
+    Drawing, Form, Motion, Object, Part, Piece, Placed, Trail, parts, pivot,
+};
 
 use crate::expr::Id;
 use crate::expr::tape::Tape;
@@ -41,15 +46,6 @@ pub struct Shapes {
     pub bodies: Vec<BodyShape>,
     /// Point masses, in the file's order.
     pub points: Vec<PointShape>,
-}
-
-/// Where everything is at one row.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Pose {
-    /// Each body's orientation (body → model frame, by rows) and its frame's origin.
-    pub bodies: Vec<([[f64; 3]; 3], [f64; 3])>,
-    /// Each point mass's position (model frame).
-    pub points: Vec<[f64; 3]>,
 }
 
 impl ModelScene {
@@ -112,7 +108,7 @@ impl ModelScene {
     /// coordinates, their rates, then the rest) at `params`. Rows shorter than `1 + 2n` give
     /// no pose.
     #[must_use]
-    pub fn poses(&self, params: &Params, rows: &[Vec<f64>]) -> Vec<Pose> {
+    pub fn poses(&self, params: &Params, rows: &[Vec<f64>]) -> Vec<Placed> {
         let model = self.model();
         let (layout, drawing) = (model.layout, &model.drawing);
         let mut outputs: Vec<Id> = Vec::new();
@@ -166,8 +162,208 @@ impl ModelScene {
                     .iter()
                     .map(|_| [next(), next(), next()])
                     .collect();
-                Pose { bodies, points }
+                Placed { bodies, points }
             })
             .collect()
+    }
+
+    /// The drawing of a model: its bodies (their `geometry`, or the uniform box with their
+    /// mass and principal moments, at their centre of mass along their principal axes), its
+    /// point masses as spheres sized by the cube root of their mass, and the origin; placed at
+    /// each row by the model's own expressions. The trail follows the first point mass, or
+    /// the heaviest turning body's z axis.
+    #[must_use]
+    pub fn view(&self, params: &Params) -> Drawing {
+        let scene = self;
+        let shapes = scene.shapes(params);
+        let state = scene.initial_state(params);
+        let mut row = vec![0.0];
+        row.extend_from_slice(&state);
+        let start = scene.poses(params, &[row]).pop();
+        // The size: the parts' reach about each body's frame origin, the points' distance.
+        let mut pieces: Vec<Vec<Piece>> = Vec::new();
+        let mut reach: f64 = 0.0;
+        for (k, b) in shapes.bodies.iter().enumerate() {
+            let own = match &b.parts {
+                Some(own) => parts(own, &Point3::origin()),
+                None => vec![equivalent_body(b)],
+            };
+            let far = own.iter().map(Piece::reach).fold(0.0, f64::max);
+            let at = start
+                .as_ref()
+                .map_or(0.0, |p| Vector3::from(p.bodies[k].1).norm());
+            reach = reach.max(at + far);
+            pieces.push(own);
+        }
+        for (k, _) in shapes.points.iter().enumerate() {
+            let at = start
+                .as_ref()
+                .map_or(0.0, |p| Vector3::from(p.points[k]).norm());
+            reach = reach.max(at);
+        }
+        let reach = if reach > 0.0 { reach } else { 1.0 };
+        let palette = ["#0072b2", "#56b4e9", "#999999", "#f0e442"];
+        let heaviest = shapes
+            .bodies
+            .iter()
+            .enumerate()
+            .filter(|(k, _)| scene.model().drawing.bodies[*k].rotation.is_some())
+            .max_by(|a, b| a.1.mass.total_cmp(&b.1.mass))
+            .map(|(k, _)| k);
+        let mut objects: Vec<Object> = pieces
+            .into_iter()
+            .enumerate()
+            .map(|(k, pieces)| Object {
+                name: "body",
+                colour: palette[k % palette.len()],
+                pieces,
+                motion: Motion::PlacedBody(k),
+                axes: Some(k) == heaviest,
+            })
+            .collect();
+        let bodies = objects.len();
+        let heaviest_point = shapes.points.iter().map(|p| p.mass).fold(0.0, f64::max);
+        for (k, p) in shapes.points.iter().enumerate() {
+            let size = if heaviest_point > 0.0 {
+                (p.mass / heaviest_point).max(0.0).cbrt()
+            } else {
+                1.0
+            };
+            objects.push(Object {
+                name: "point",
+                colour: "#d55e00",
+                pieces: vec![Piece::centred(Form::Sphere(0.06 * reach * size.max(0.3)))],
+                motion: Motion::PlacedPoint(k),
+                axes: false,
+            });
+        }
+        let trail = if shapes.points.is_empty() {
+            Trail::Tip(heaviest.unwrap_or(0), Vector3::new(0.0, 0.0, 1.15 * reach))
+        } else {
+            Trail::Object(bodies)
+        };
+        objects.push(pivot(reach));
+        Drawing {
+            objects,
+            trail,
+            reach,
+        }
+    }
+}
+
+/// A body known by its mass and inertia, drawn at its centre of mass along its principal
+/// axes: a flat body symmetric about its largest axis (`I₃ = I₁ + I₂`, `I₁ = I₂`: a ring, the
+/// gimbals) as the hoop with its largest moment (radius `√(I₃/m)`), any other as the uniform
+/// box with its principal moments (full sides `s₁² = 6 (I₂ + I₃ − I₁) / m`, …); a box with no
+/// extent along an axis gets 2 % of its largest side there, a body with no inertia a small
+/// sphere.
+fn equivalent_body(b: &BodyShape) -> Piece {
+    let inertia = Matrix3::from_fn(|i, j| b.inertia[i][j]);
+    let eigen = nalgebra::SymmetricEigen::new(inertia);
+    let mut l = eigen.eigenvalues;
+    let mut axes = eigen.eigenvectors;
+    // The largest moment last, its axis the piece's z.
+    let top = (0..3).max_by(|&i, &j| l[i].total_cmp(&l[j])).unwrap_or(2);
+    if top != 2 {
+        l.swap_rows(top, 2);
+        axes.swap_columns(top, 2);
+    }
+    if axes.determinant() < 0.0 {
+        axes.column_mut(0).neg_mut();
+    }
+    let com = Vector3::from(b.com);
+    let flat = (l[2] - l[0] - l[1]).abs() <= 1e-9 * l[2];
+    let round = (l[0] - l[1]).abs() <= 1e-9 * l[2];
+    if b.mass > 0.0 && l[2] > 0.0 && flat && round {
+        let major = (l[2] / b.mass).sqrt();
+        let turn = UnitQuaternion::from_matrix_eps(&axes, 1e-12, 100, UnitQuaternion::identity());
+        return Piece::new(
+            Form::Torus {
+                major,
+                minor: 0.03 * major,
+            },
+            com,
+            turn,
+        );
+    }
+    let sides = if b.mass > 0.0 {
+        [0, 1, 2].map(|i| {
+            (6.0 * (l[(i + 1) % 3] + l[(i + 2) % 3] - l[i]) / b.mass)
+                .max(0.0)
+                .sqrt()
+        })
+    } else {
+        [0.0; 3]
+    };
+    let largest = sides.iter().copied().fold(0.0, f64::max);
+    if !(largest > 0.0 && largest.is_finite()) {
+        return Piece::new(Form::Sphere(0.05), com, UnitQuaternion::identity());
+    }
+    let turn = UnitQuaternion::from_matrix_eps(&axes, 1e-12, 100, UnitQuaternion::identity());
+    Piece::new(Form::Box(sides.map(|s| s.max(0.02 * largest))), com, turn)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn shape(mass: f64, inertia: [[f64; 3]; 3]) -> BodyShape {
+        BodyShape {
+            name: "b".into(),
+            mass,
+            com: [0.1, 0.2, 0.3],
+            inertia,
+            parts: None,
+        }
+    }
+
+    #[test]
+    fn a_body_known_by_its_moments_is_drawn_as_the_uniform_box_that_has_them() {
+        // A uniform box of sides (a, b, c) and mass m: I₁ = m (b² + c²)/12, … (any textbook).
+        let (m, a, b, c) = (2.0, 0.3, 0.5, 0.9);
+        let diag = [
+            m * (b * b + c * c) / 12.0,
+            m * (a * a + c * c) / 12.0,
+            m * (a * a + b * b) / 12.0,
+        ];
+        let piece = equivalent_body(&shape(
+            m,
+            [
+                [diag[0], 0.0, 0.0],
+                [0.0, diag[1], 0.0],
+                [0.0, 0.0, diag[2]],
+            ],
+        ));
+        let Form::Box(sides) = piece.form else {
+            panic!("{piece:?}")
+        };
+        // The largest moment's axis is the piece's z: the sides in the frame of the moments.
+        let world: Vec<f64> = (0..3)
+            .map(|k| (piece.turn * Vector3::ith(k, sides[k])).abs().max())
+            .collect();
+        let mut got = world.clone();
+        got.sort_by(f64::total_cmp);
+        for (g, e) in got.iter().zip([a, b, c]) {
+            assert!((g - e).abs() < 1e-12, "{world:?}");
+        }
+        assert_eq!(piece.at, Vector3::new(0.1, 0.2, 0.3));
+    }
+
+    #[test]
+    fn a_flat_round_body_is_drawn_as_the_ring_with_its_largest_moment() {
+        // A ring of radius R and mass m: I₃ = m R², I₁ = I₂ = m R²/2, here about x.
+        let (m, r) = (0.4, 0.7);
+        let i = m * r * r;
+        let piece = equivalent_body(&shape(
+            m,
+            [[i, 0.0, 0.0], [0.0, i / 2.0, 0.0], [0.0, 0.0, i / 2.0]],
+        ));
+        let Form::Torus { major, .. } = piece.form else {
+            panic!("{piece:?}")
+        };
+        assert!((major - r).abs() < 1e-12);
+        // Its normal (the piece's z) along the largest moment's axis, x.
+        let normal = piece.turn * Vector3::z();
+        assert!((normal.x.abs() - 1.0).abs() < 1e-12, "{normal:?}");
     }
 }

@@ -149,6 +149,9 @@ pub enum SceneError {
     /// Mass properties could not be computed (a body's mesh or primitive).
     #[error(transparent)]
     Inertia(#[from] tumble_inertia::InertiaError),
+    /// A body's triangle mesh does not bound a solid.
+    #[error(transparent)]
+    Mesh(#[from] tumble_inertia::MeshError),
     /// The integrator failed (non-convergence, non-finite state), with time and state.
     #[error("integration failed: {0}")]
     Integration(#[from] tumble_integrators::Error),

@@ -14,6 +14,7 @@ use std::path::Path;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use nalgebra::Vector3;
+use tumble_scenarios::drawing::{Drawing, Placed};
 use tumble_scenarios::scene::{CancelFlag, MAX_ANGLE_PER_STEP};
 
 use crate::sweep::{SweepDefinition, coarsest_point};
@@ -534,5 +535,13 @@ impl Scene for Interruptible {
 
     fn fixed_columns(&self) -> &'static [(&'static str, &'static str)] {
         self.scene.fixed_columns()
+    }
+
+    fn drawing(&self, params: &Params) -> Option<Result<Drawing, SceneError>> {
+        self.scene.drawing(params)
+    }
+
+    fn placements(&self, params: &Params, rows: &[Vec<f64>]) -> Vec<Placed> {
+        self.scene.placements(params, rows)
     }
 }

@@ -10,6 +10,7 @@
 use tumble_integrators::registry::{self, MethodInfo};
 use tumble_integrators::{DenseStep, Flow, ProblemKind};
 
+use crate::drawing::{Drawing, Placed};
 use crate::error::SceneError;
 use crate::params::{ParamSpec, Params};
 pub use crate::recommendation::Recommendation;
@@ -346,6 +347,24 @@ pub trait Scene: Sync {
     /// Guides for the map of a sweep of this scene over the parameters `axes` (first axis
     /// horizontal, spanning `x_range`), the others fixed at `params`. Empty by default.
     fn map_guides(&self, _params: &Params, _axes: &[&str], _x_range: (f64, f64)) -> Vec<Guide> {
+        Vec::new()
+    }
+
+    /// What `tumble view` and `tumble animate` draw of this scene at `params`: its objects,
+    /// how each follows the rows, the trail and the size ([`Drawing`]). `None` by default: the
+    /// scene has no 3D view.
+    ///
+    /// # Errors
+    /// (Inside the `Some`) invalid parameters.
+    fn drawing(&self, _params: &Params) -> Option<Result<Drawing, SceneError>> {
+        None
+    }
+
+    /// Where the bodies and point masses that this scene places itself
+    /// ([`Motion::PlacedBody`](crate::drawing::Motion::PlacedBody), …) are at each of `rows`
+    /// (the scene's rows at `params`); rows that do not hold the scene's state give none.
+    /// Empty by default.
+    fn placements(&self, _params: &Params, _rows: &[Vec<f64>]) -> Vec<Placed> {
         Vec::new()
     }
 

@@ -48,6 +48,7 @@ use tumble_kinematics::so3::hat;
 
 use super::hoop::{HoopParams, critical_spin, critical_spin_guide, hoop_rate, tilt_from_normal};
 use crate::dispatch;
+use crate::drawing::{Drawing, Motion};
 use crate::error::SceneError;
 use crate::params::{Domain, ParamSpec, Params};
 use crate::recommendation::Measure;
@@ -479,6 +480,15 @@ fn run_coupled(
 impl Scene for FreeHoopScene {
     fn info(&self) -> &'static SceneInfo {
         &FREE_HOOP
+    }
+
+    /// The hoop turned by the rows' quaternion, the bead at `alpha` on it.
+    fn drawing(&self, params: &Params) -> Option<Result<Drawing, SceneError>> {
+        Some(
+            params
+                .get("a")
+                .map(|a| Drawing::hoop(a, Motion::Quaternion, Motion::BeadFree { a })),
+        )
     }
 
     fn recommendations(&self) -> &'static [Recommendation] {

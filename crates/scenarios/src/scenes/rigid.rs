@@ -40,6 +40,7 @@ use tumble_integrators::{Ode, ProblemKind};
 use tumble_kinematics::so3::{exp, hat};
 
 use crate::dispatch;
+use crate::drawing::Drawing;
 use crate::error::SceneError;
 use crate::params::{Domain, ParamSpec, Params};
 use crate::recommendation::Measure;
@@ -398,6 +399,14 @@ impl Scene for FreeBodyScene {
         &FREE_BODY
     }
 
+    /// The body as the uniform box with its principal moments.
+    fn drawing(&self, params: &Params) -> Option<Result<Drawing, SceneError>> {
+        let moments = || -> Result<[f64; 3], SceneError> {
+            Ok([params.get("I1")?, params.get("I2")?, params.get("I3")?])
+        };
+        Some(moments().map(Drawing::equivalent_box))
+    }
+
     fn recommendations(&self) -> &'static [Recommendation] {
         &FREE_BODY_RECOMMENDED
     }
@@ -547,6 +556,11 @@ impl DzhanibekovScene {
 impl Scene for DzhanibekovScene {
     fn info(&self) -> &'static SceneInfo {
         &DZHANIBEKOV
+    }
+
+    /// The standard T-handle's mesh.
+    fn drawing(&self, _params: &Params) -> Option<Result<Drawing, SceneError>> {
+        Some(Drawing::t_handle())
     }
 
     fn recommendations(&self) -> &'static [Recommendation] {
@@ -709,6 +723,11 @@ impl HeavyTopScene {
 impl Scene for HeavyTopScene {
     fn info(&self) -> &'static SceneInfo {
         &HEAVY_TOP
+    }
+
+    /// The symmetric top's axis and disk.
+    fn drawing(&self, _params: &Params) -> Option<Result<Drawing, SceneError>> {
+        Some(Ok(Drawing::symmetric_top()))
     }
 
     fn recommendations(&self) -> &'static [Recommendation] {

@@ -7,6 +7,7 @@ use nalgebra::{SVector, Vector3};
 use tumble_integrators::ProblemKind;
 
 use super::{DrivenHoop, HoopParams, SpinningHoop, SpinningHoopHamiltonian, hoop_angular_momentum};
+use crate::drawing::{Drawing, Motion};
 use crate::error::SceneError;
 use crate::params::{Domain, ParamSpec, Params};
 use crate::recommendation::Measure;
@@ -154,6 +155,18 @@ impl Scene for DrivenHoopScene {
 
     fn info(&self) -> &'static SceneInfo {
         &DRIVEN_HOOP
+    }
+
+    /// The hoop in its vertical plane turned at `omega`, the bead on it.
+    fn drawing(&self, params: &Params) -> Option<Result<Drawing, SceneError>> {
+        Some(params.get("a").and_then(|a| {
+            let omega = Some(params.get("omega")?);
+            Ok(Drawing::hoop(
+                a,
+                Motion::VerticalPlane { omega },
+                Motion::BeadVertical { a, omega },
+            ))
+        }))
     }
 
     fn recommendations(&self) -> &'static [Recommendation] {
@@ -311,6 +324,18 @@ impl Scene for SpinningHoopScene {
 
     fn info(&self) -> &'static SceneInfo {
         &SPINNING_HOOP
+    }
+
+    /// The hoop in its vertical plane at the azimuth `phi`, the bead on it.
+    fn drawing(&self, params: &Params) -> Option<Result<Drawing, SceneError>> {
+        Some(params.get("a").map(|a| {
+            let omega = None;
+            Drawing::hoop(
+                a,
+                Motion::VerticalPlane { omega },
+                Motion::BeadVertical { a, omega },
+            )
+        }))
     }
 
     fn recommendations(&self) -> &'static [Recommendation] {

@@ -1,6 +1,14 @@
-//! What a body scene's body looks like: the parts of a scene file's `[body]` table in the
-//! body's own frame, for drawing (`tumble view`). The mass properties come from the same parts
-//! ([`body_table`](crate::body_table)); this keeps their shapes.
+//! What a scene looks like, for `tumble view` and `tumble animate`: the [`Drawing`] a scene
+//! declares ([`Scene::drawing`](crate::Scene::drawing): objects made of [`Piece`]s, how each
+//! follows the rows, the trail), the pieces of a body's parts, and the parts of a scene file's
+//! `[body]` table in the body's own frame (the mass properties come from the same parts,
+//! [`body_table`](crate::body_table); this keeps their shapes).
+
+mod pieces;
+mod view;
+
+pub use pieces::{Form, Piece, equivalent_box, mesh, parts, reach};
+pub use view::{Drawing, Motion, Object, Placed, Trail, pivot};
 
 use std::path::Path;
 
