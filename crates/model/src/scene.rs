@@ -4,9 +4,12 @@
 //! its compositions) and the Taylor methods ([`ProblemKind::TaylorSeries`]: coefficients by
 //! automatic differentiation on the tape, [`crate::taylor`]).
 //!
-//! The state is `(q, q̇)`; each evaluation of the right-hand side runs the model's instruction
-//! tape (mass matrix and forces, [`crate::expr::tape`]) and solves `M q̈ = f` by Cholesky in
-//! a workspace allocated once per run.
+//! The state is `(q, q̇)`; each evaluation of the right-hand side runs one instruction tape
+//! ([`crate::expr::tape`]) in a workspace allocated once per run: the forces, the kinematics
+//! and the solve of `M q̈ = f` by Cholesky written out on the graph
+//! ([`crate::mechanics::first_order`]; a mass matrix of the parameters alone is inverted in
+//! the tape's prelude, once per run), compiled to native code where the machine has a code
+//! generator, reading the state and writing its derivative directly.
 //!
 //! Rows: `t`, the coordinates, their rates, `energy` (the energy function
 //! `h = Σ q̇ᵢ ∂L/∂q̇ᵢ − L`: the energy, or the Jacobi integral of a driven or rotating model),
@@ -37,7 +40,7 @@ use crate::expr::tape::Tape;
 use crate::expr::taylor::TaylorPlan;
 use crate::file::{Model, ModelFileError};
 use crate::group::{Group, ModelCoupled, ModelRigidBody};
-use crate::mechanics::{Layout, cholesky_factor, cholesky_solve, cholesky_substitute};
+use crate::mechanics::{Layout, first_order};
 use crate::taylor::ModelTaylor;
 use tumble_jit::{JitError, Native};
 
@@ -49,12 +52,17 @@ pub const MAX_CONDITION: f64 = 1e10;
 pub struct ModelScene {
     info: &'static SceneInfo,
     model: Model,
-    /// Mass matrix (row-major) then forces.
+    /// Mass matrix (row-major) then forces: the Taylor recursions' tape, and the mass matrix
+    /// of [`ModelOde::mass_matrix`].
     rhs: Tape,
-    /// `rhs`'s body as native code, where the machine has a code generator.
+    /// The first-order right-hand side `y'` (the state's length), then the pivots of the
+    /// mass matrix's Cholesky factorization ([`first_order`]).
+    flow: Tape,
+    /// `flow`'s body as native code, where the machine has a code generator: the state as its
+    /// arguments, `y'` as its results, the pivots stored in the workspace.
     native: Option<Native>,
     /// Whether the mass matrix depends on the parameters only (a body on SO(3) with no
-    /// coordinates: its inertia): then it is factored once per run.
+    /// coordinates: its inertia): then it is factored once per run, in `flow`'s prelude.
     constant_mass: bool,
     /// Energy, momenta of the cyclic coordinates, outputs.
     row: Tape,
@@ -145,16 +153,23 @@ impl ModelScene {
         let layout = model.layout;
         let n = layout.n;
         let fixed = move |k: u32| layout.is_param(k);
+        let constant_mass = model
+            .equations
+            .mass
+            .iter()
+            .all(|&id| !model.graph.depends_on(id, &|k| !layout.is_param(k)));
+        let system = first_order(&mut model.graph, &model.equations, layout, constant_mass);
+        let mut flow_out = system.derivative;
+        flow_out.extend(system.pivots);
+        let flow = Tape::with_fixed(&model.graph, &flow_out, &fixed);
+        let native = flow
+            .compile(&state_args(&flow, layout), layout.state_len())
+            .ok();
         let eq = &model.equations;
         let (cyclic, autonomous) = symmetries(&model);
         let mut outputs = eq.mass.clone();
         outputs.extend_from_slice(&eq.force);
         let rhs = Tape::with_fixed(&model.graph, &outputs, &fixed);
-        let native = rhs.compile().ok();
-        let constant_mass = eq
-            .mass
-            .iter()
-            .all(|&id| !model.graph.depends_on(id, &|k| !layout.is_param(k)));
         let taylor = (layout.so3 == 0).then(|| TaylorPlan::new(&rhs, 1 + 2 * n));
         let display = Display::of(&model);
         let mut row_out = vec![eq.energy];
@@ -243,6 +258,7 @@ impl ModelScene {
             info,
             model,
             rhs,
+            flow,
             native,
             constant_mass,
             row,
@@ -293,10 +309,10 @@ impl ModelScene {
         &self.model
     }
 
-    /// Instructions per right-hand-side evaluation (the tape's body).
+    /// Instructions per right-hand-side evaluation (the body of its tape).
     #[must_use]
     pub fn rhs_instructions(&self) -> usize {
-        self.rhs.len()
+        self.flow.len()
     }
 
     /// The inputs of the model's tapes at `params`: time, coordinates and rates zero.
@@ -344,7 +360,9 @@ impl ModelScene {
     /// # Errors
     /// [`JitError`] where the machine has no code generator.
     pub fn compile_rhs(&self) -> Result<Native, JitError> {
-        self.rhs.compile()
+        let layout = self.model.layout;
+        self.flow
+            .compile(&state_args(&self.flow, layout), layout.state_len())
     }
 
     /// The right-hand side at `params`, its workspace allocated here once, evaluated as
@@ -360,47 +378,36 @@ impl ModelScene {
     #[must_use]
     pub fn ode_with(&self, params: &Params, evaluation: Evaluation) -> ModelOde<'_> {
         let layout = self.model.layout;
-        let dof = layout.dof();
-        let mut slots = self.rhs.workspace();
         let inputs = self.inputs(params);
-        let k = inputs.len().min(slots.len());
-        slots[..k].copy_from_slice(&inputs[..k]);
-        self.rhs.run_prelude(&mut slots);
-        // A mass matrix of the parameters alone is in the prelude's results: inverted here
-        // once (Cholesky, column by column), each evaluation then multiplies by the inverse.
-        let mut m = vec![0.0; dof * dof];
-        let mut factored = false;
-        if self.constant_mass {
-            let mut l = vec![0.0; dof * dof];
-            for (i, x) in l.iter_mut().enumerate() {
-                *x = self.rhs.output(&slots, i);
-            }
-            if cholesky_factor(&mut l, dof) > 0.0 {
-                let mut e = vec![0.0; dof];
-                for j in 0..dof {
-                    e.fill(0.0);
-                    e[j] = 1.0;
-                    cholesky_substitute(&l, &mut e, dof);
-                    for i in 0..dof {
-                        m[i * dof + j] = e[i];
-                    }
-                }
-                factored = true;
-            }
-        }
+        let prepared = |tape: &Tape| {
+            let mut w = tape.workspace();
+            let k = inputs.len().min(w.len());
+            w[..k].copy_from_slice(&inputs[..k]);
+            tape.run_prelude(&mut w);
+            w
+        };
+        let (slots, mass) = (prepared(&self.flow), prepared(&self.rhs));
+        let state = layout.state_len();
+        // The pivots of a mass matrix of the parameters alone are results of the prelude:
+        // checked here once; others after each evaluation.
+        let pivots = state..state + layout.dof();
+        let (pivots, positive) = if self.constant_mass {
+            let positive = pivots.clone().all(|j| self.flow.output(&slots, j) > 0.0);
+            (state..state, positive)
+        } else {
+            (pivots, true)
+        };
         ModelOde {
-            tape: &self.rhs,
+            tape: &self.flow,
+            mass: &self.rhs,
             native: match evaluation {
                 Evaluation::Native => self.native,
                 Evaluation::Interpreted => None,
             },
             layout,
-            work: RefCell::new(Work {
-                slots,
-                m,
-                b: vec![0.0; dof],
-                factored,
-            }),
+            pivots,
+            positive,
+            work: RefCell::new(Work { slots, mass }),
         }
     }
 
@@ -798,14 +805,11 @@ fn symmetries(model: &Model) -> (Vec<bool>, bool) {
     (cyclic, autonomous)
 }
 
-/// The workspace of one run's right-hand side.
+/// The workspaces of one run's right-hand side and of its mass matrix.
 #[derive(Debug)]
 struct Work {
     slots: Vec<f64>,
-    m: Vec<f64>,
-    b: Vec<f64>,
-    /// `m` holds the inverse of a mass matrix that does not change during the run.
-    factored: bool,
+    mass: Vec<f64>,
 }
 
 /// How a model's right-hand side is evaluated.
@@ -817,83 +821,72 @@ pub enum Evaluation {
     Interpreted,
 }
 
+/// The arguments of a model's compiled right-hand side: its state `y`, inputs `1 ..` of the
+/// tape (the ones it has).
+fn state_args(flow: &Tape, layout: Layout) -> Vec<u32> {
+    (1..=layout.state_len() as u32)
+        .take_while(|&k| (k as usize) < flow.inputs())
+        .collect()
+}
+
 /// A model's first-order system `(q, q̇)' = (q̇, M⁻¹ f)` at fixed parameters.
 #[derive(Debug)]
 pub struct ModelOde<'a> {
+    /// `y'` then the pivots ([`first_order`]).
     tape: &'a Tape,
+    /// Mass matrix then forces.
+    mass: &'a Tape,
     native: Option<Native>,
     layout: Layout,
+    /// The outputs of `tape` that are pivots to check after each evaluation (none for a
+    /// mass matrix of the parameters alone).
+    pivots: std::ops::Range<usize>,
+    /// Whether the pivots checked once per run were positive.
+    positive: bool,
     work: RefCell<Work>,
 }
 
 impl ModelOde<'_> {
-    fn evaluate(&self, t: f64, y: &[f64], w: &mut Work) {
-        let inputs = self.tape.inputs();
-        if inputs > 0 {
-            w.slots[0] = t;
-            let m = (inputs - 1).min(y.len());
-            w.slots[1..=m].copy_from_slice(&y[..m]);
-        }
-        match self.native {
-            Some(f) => f.run(&mut w.slots),
-            None => self.tape.run(&mut w.slots),
-        }
-    }
-
     /// `M(q, t)` at `(t, y)`, row-major.
     #[must_use]
     pub fn mass_matrix(&self, t: f64, y: &[f64]) -> Vec<f64> {
-        let w = &mut *self.work.borrow_mut();
-        self.evaluate(t, y, w);
+        let w = &mut self.work.borrow_mut().mass;
+        let inputs = self.mass.inputs();
+        if inputs > 0 {
+            w[0] = t;
+            let m = (inputs - 1).min(y.len());
+            w[1..=m].copy_from_slice(&y[..m]);
+        }
+        self.mass.run(w);
         let dof = self.layout.dof();
-        (0..dof * dof)
-            .map(|i| self.tape.output(&w.slots, i))
-            .collect()
+        (0..dof * dof).map(|i| self.mass.output(w, i)).collect()
     }
 
     /// Writes `(q̇, q̈)` for the state `y = (q, q̇)` into `dy`; NaN accelerations where the mass
     /// matrix is not positive definite (the driver then stops with the state).
     pub fn rhs_slice(&self, t: f64, y: &[f64], dy: &mut [f64]) {
-        let layout = self.layout;
-        let (n, dof, v) = (layout.n, layout.dof(), layout.velocities_at());
-        let w = &mut *self.work.borrow_mut();
-        self.evaluate(t, y, w);
-        let Work {
-            slots,
-            m,
-            b,
-            factored,
-        } = w;
-        for i in 0..dof {
-            b[i] = self.tape.output(slots, dof * dof + i);
+        let w = &mut self.work.borrow_mut().slots;
+        let tape = self.tape;
+        let state = self.layout.state_len();
+        // Input 0 is time; the state's inputs follow (`state_args`).
+        let inputs = tape.inputs();
+        if inputs > 0 {
+            w[0] = t;
         }
-        // Kinematics: q' = q̇, and R' = R ω̂ for each orientation on SO(3).
-        dy[..n].copy_from_slice(&y[v..v + n]);
-        for f in 0..layout.so3 {
-            let r = n + 9 * f;
-            let o = v + n + 3 * f;
-            let (wx, wy, wz) = (y[o], y[o + 1], y[o + 2]);
-            for a in 0..3 {
-                let (r0, r1, r2) = (y[r + 3 * a], y[r + 3 * a + 1], y[r + 3 * a + 2]);
-                dy[r + 3 * a] = r1 * wz - r2 * wy;
-                dy[r + 3 * a + 1] = r2 * wx - r0 * wz;
-                dy[r + 3 * a + 2] = r0 * wy - r1 * wx;
+        match self.native {
+            Some(f) => f.run(w, y, dy),
+            None => {
+                let m = inputs.saturating_sub(1).min(state);
+                w[1..=m].copy_from_slice(&y[..m]);
+                tape.run(w);
+                for (i, d) in dy[..state].iter_mut().enumerate() {
+                    *d = tape.output(w, i);
+                }
             }
         }
-        if *factored {
-            for i in 0..dof {
-                let row = &m[i * dof..(i + 1) * dof];
-                dy[v + i] = row.iter().zip(b.iter()).map(|(a, x)| a * x).sum();
-            }
-            return;
-        }
-        for i in 0..dof * dof {
-            m[i] = self.tape.output(slots, i);
-        }
-        if cholesky_solve(m, b, dof) > 0.0 {
-            dy[v..v + dof].copy_from_slice(b);
-        } else {
-            dy[v..v + dof].fill(f64::NAN);
+        if !self.positive || self.pivots.clone().any(|j| !(tape.output(w, j) > 0.0)) {
+            let v = self.layout.velocities_at();
+            dy[v..state].fill(f64::NAN);
         }
     }
 }
