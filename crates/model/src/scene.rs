@@ -847,9 +847,8 @@ pub struct ModelOde<'a> {
 }
 
 impl ModelOde<'_> {
-    /// `M(q, t)` at `(t, y)`, row-major.
-    #[must_use]
-    pub fn mass_matrix(&self, t: f64, y: &[f64]) -> Vec<f64> {
+    /// Outputs `range` of the mass matrix and forces' tape at `(t, y)`.
+    fn mass_outputs(&self, t: f64, y: &[f64], range: std::ops::Range<usize>) -> Vec<f64> {
         let w = &mut self.work.borrow_mut().mass;
         let inputs = self.mass.inputs();
         if inputs > 0 {
@@ -858,8 +857,21 @@ impl ModelOde<'_> {
             w[1..=m].copy_from_slice(&y[..m]);
         }
         self.mass.run(w);
+        range.map(|i| self.mass.output(w, i)).collect()
+    }
+
+    /// `M(q, t)` at `(t, y)`, row-major.
+    #[must_use]
+    pub fn mass_matrix(&self, t: f64, y: &[f64]) -> Vec<f64> {
         let dof = self.layout.dof();
-        (0..dof * dof).map(|i| self.mass.output(w, i)).collect()
+        self.mass_outputs(t, y, 0..dof * dof)
+    }
+
+    /// The generalized forces `f` of `M v̇ = f` at `(t, y)` ([`crate::mechanics::Equations`]).
+    #[must_use]
+    pub fn forces(&self, t: f64, y: &[f64]) -> Vec<f64> {
+        let dof = self.layout.dof();
+        self.mass_outputs(t, y, dof * dof..dof * dof + dof)
     }
 
     /// Writes `(q̇, q̈)` for the state `y = (q, q̇)` into `dy`; NaN accelerations where the mass
