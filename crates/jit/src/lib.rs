@@ -2,11 +2,12 @@
 //!
 //! A [`Program`] is what tumble's model files become after symbolic differentiation: a flat
 //! list of instructions `slot[dst] = op(slot[a], slot[b])` over a workspace of `f64` slots,
-//! with no branches and no loops (the instruction tape of `tumble-model`). [`Program::run`]
-//! interprets it; [`Native::compile`] turns it into one machine-code function with
+//! with no branches and no loops (the instruction tape of `tumble-model`), reading its
+//! arguments from one array and writing its results to another. [`Program::run`] interprets
+//! it; [`Native::compile`] turns it into one machine-code function with
 //! [Cranelift](https://cranelift.dev) (the code generator of Wasmtime), so that a model's
 //! right-hand side runs without an interpreter's dispatch, loads and stores between
-//! instructions.
+//! instructions, or copies of its state in and out of the workspace.
 //!
 //! **Same numbers.** The compiled function performs the same IEEE-754 operations, in the same
 //! order, on the same operands as the interpreter: `+ − × ÷`, negation, `|x|` and `√x` are
@@ -105,16 +106,22 @@ pub struct Instr {
     pub b: u32,
 }
 
-/// A straight-line program over a workspace of `slots` values: the instructions run in order,
-/// and after a run the `outputs` slots hold its results. Slots that no instruction writes
-/// before reading them are its inputs, read from the workspace.
+/// A straight-line program over a workspace of `slots` values, run on an argument array `x`
+/// and a result array `out`: slot `args[i]` is set to `x[i]`, the instructions run in order,
+/// then `out[i]` is set to slot `results[i]`, and the `outputs` slots of the workspace hold
+/// their values. Slots that no instruction writes before reading them and that are no
+/// argument are inputs read from the workspace (values set once, as a run's parameters).
 #[derive(Debug, Clone, Copy)]
 pub struct Program<'a> {
     /// Size of the workspace.
     pub slots: usize,
     /// The instructions, in order.
     pub code: &'a [Instr],
-    /// The slots that hold the results.
+    /// The slot each argument is written to, before the instructions run.
+    pub args: &'a [u32],
+    /// The slots copied to the result array, in order, after the instructions run.
+    pub results: &'a [u32],
+    /// The slots whose values the workspace holds after a run.
     pub outputs: &'a [u32],
 }
 
@@ -125,15 +132,16 @@ pub enum JitError {
     #[error("instruction {instr} names slot {slot}, beyond the workspace of {slots} slots")]
     SlotOutOfRange {
         /// The instruction (its position in the code; the number of instructions for an
-        /// output).
+        /// argument, a result or an output).
         instr: usize,
         /// The slot named.
         slot: u32,
         /// The workspace size.
         slots: usize,
     },
-    /// The workspace is too large to address with 32-bit offsets.
-    #[error("a workspace of {0} slots is too large to compile")]
+    /// The workspace (or the argument or result array) is too large to address with 32-bit
+    /// offsets.
+    #[error("a workspace, argument or result array of {0} values is too large to compile")]
     TooLarge(usize),
     /// The machine this runs on is not one Cranelift generates code for.
     #[error("no native code generator for this machine: {0}")]
@@ -145,14 +153,16 @@ pub enum JitError {
 
 impl Program<'_> {
     /// Checks every slot index against the workspace: the condition under which the compiled
-    /// code touches only the workspace it is given.
+    /// code touches only the workspace and the arrays it is given.
     ///
     /// # Errors
     /// [`JitError::SlotOutOfRange`] for the first index beyond the workspace,
-    /// [`JitError::TooLarge`] for a workspace beyond 32-bit byte offsets.
+    /// [`JitError::TooLarge`] for a workspace or an array beyond 32-bit byte offsets.
     pub fn validate(&self) -> Result<(), JitError> {
-        if self.slots > (i32::MAX as usize) / 8 {
-            return Err(JitError::TooLarge(self.slots));
+        for len in [self.slots, self.args.len(), self.results.len()] {
+            if len > (i32::MAX as usize) / 8 {
+                return Err(JitError::TooLarge(len));
+            }
         }
         let check = |instr: usize, slot: u32| {
             if (slot as usize) < self.slots {
@@ -175,18 +185,23 @@ impl Program<'_> {
                 check(i, ins.b)?;
             }
         }
-        for &o in self.outputs {
+        for &o in self.args.iter().chain(self.results).chain(self.outputs) {
             check(self.code.len(), o)?;
         }
         Ok(())
     }
 
-    /// Runs the program by interpretation: the reference semantics of [`Native`].
+    /// Runs the program by interpretation on the workspace `w`, the arguments `x` and the
+    /// results `out`: the reference semantics of [`Native`].
     ///
     /// # Panics
     /// If a slot index is beyond `w` (a program that passes [`Program::validate`] and a
-    /// workspace of at least `slots` values never does).
-    pub fn run(&self, w: &mut [f64]) {
+    /// workspace of at least `slots` values never does), or `x` or `out` is shorter than
+    /// `args` or `results`.
+    pub fn run(&self, w: &mut [f64], x: &[f64], out: &mut [f64]) {
+        for (&s, &v) in self.args.iter().zip(&x[..self.args.len()]) {
+            w[s as usize] = v;
+        }
         for ins in self.code {
             let x = w[ins.a as usize];
             let y = w[ins.b as usize];
@@ -203,6 +218,9 @@ impl Program<'_> {
                 Op::Call1(f) => f(x),
                 Op::Call2(f) => f(x, y),
             };
+        }
+        for (o, &s) in out[..self.results.len()].iter_mut().zip(self.results) {
+            *o = w[s as usize];
         }
     }
 }

@@ -24,12 +24,20 @@ fn same(a: f64, b: f64) -> bool {
     a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan())
 }
 
-/// Runs `program` both ways from the same workspace and compares every output.
-fn agree(program: &Program<'_>, w0: &[f64]) -> Result<(), String> {
+/// Runs `program` both ways from the same workspace and arguments `x` and compares every
+/// result and every output.
+fn agree(program: &Program<'_>, w0: &[f64], x: &[f64]) -> Result<(), String> {
     let native = Native::compile(program).map_err(|e| e.to_string())?;
     let (mut wi, mut wn) = (w0.to_vec(), w0.to_vec());
-    program.run(&mut wi);
-    native.run(&mut wn);
+    let r = program.results.len();
+    let (mut oi, mut on) = (vec![-7.0; r], vec![-7.0; r]);
+    program.run(&mut wi, x, &mut oi);
+    native.run(&mut wn, x, &mut on);
+    for (k, (&i, &n)) in oi.iter().zip(&on).enumerate() {
+        if !same(i, n) {
+            return Err(format!("result {k}: interpreter {i:e}, native {n:e}"));
+        }
+    }
     for &o in program.outputs {
         let (i, n) = (wi[o as usize], wn[o as usize]);
         if !same(i, n) {
@@ -58,14 +66,17 @@ fn op(kind: u8, c: f64, n: i32) -> Op {
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(300))]
 
-    /// Random straight-line programs (every operation, slots written in any order, inputs read
-    /// several times, slots overwritten, outputs anywhere) give the interpreter's bits.
+    /// Random straight-line programs (every operation, slots written in any order, inputs and
+    /// arguments read several times, slots overwritten, arguments anywhere, results and
+    /// outputs anywhere) give the interpreter's bits.
     #[test]
     fn compiled_programs_give_the_interpreters_bits(
         inputs in prop::collection::vec(-3.0f64..3.0, 1..6),
         extra in 1usize..30,
         code in prop::collection::vec((any::<u8>(), -2.0f64..2.0, -9i32..9, any::<u32>(), any::<u32>(), any::<u32>()), 1..120),
         outs in prop::collection::vec(any::<u32>(), 1..8),
+        x in prop::collection::vec((-3.0f64..3.0, any::<u32>()), 0..8),
+        res in prop::collection::vec(any::<u32>(), 0..8),
     ) {
         let slots = inputs.len() + extra;
         let s = |k: u32| k % slots as u32;
@@ -74,10 +85,13 @@ proptest! {
             .map(|&(kind, c, n, d, a, b)| Instr { op: op(kind, c, n), dst: s(d), a: s(a), b: s(b) })
             .collect();
         let outputs: Vec<u32> = outs.iter().map(|&o| s(o)).collect();
+        let results: Vec<u32> = res.iter().map(|&o| s(o)).collect();
+        let args: Vec<u32> = x.iter().map(|&(_, a)| s(a)).collect();
+        let x: Vec<f64> = x.iter().map(|&(v, _)| v).collect();
         let mut w0 = vec![0.5; slots];
         w0[..inputs.len()].copy_from_slice(&inputs);
-        let program = Program { slots, code: &code, outputs: &outputs };
-        prop_assert_eq!(agree(&program, &w0), Ok(()));
+        let program = Program { slots, code: &code, args: &args, results: &results, outputs: &outputs };
+        prop_assert_eq!(agree(&program, &w0, &x), Ok(()));
     }
 
     /// `x^n` is Rust's `f64::powi`, bit for bit, for exponents across the `i32` range and
@@ -86,10 +100,10 @@ proptest! {
     fn powi_is_rusts_powi_bit_for_bit(x in prop::num::f64::ANY, n in any::<i32>(), small in -70i32..70) {
         for n in [n, small] {
             let code = [Instr { op: Op::Powi(n), dst: 1, a: 0, b: 0 }];
-            let program = Program { slots: 2, code: &code, outputs: &[1] };
+            let program = Program { slots: 2, code: &code, args: &[], results: &[], outputs: &[1] };
             let native = Native::compile(&program).unwrap();
             let mut w = [x, 0.0];
-            native.run(&mut w);
+            native.run(&mut w, &[], &mut []);
             prop_assert!(same(w[1], x.powi(n)), "{x:e}^{n}: {:e} vs {:e}", w[1], x.powi(n));
         }
     }
@@ -121,9 +135,15 @@ fn special_values_go_through_every_operation_as_interpreted() {
                     let program = Program {
                         slots: 3,
                         code: &code,
-                        outputs: &[2],
+                        args: &[0],
+                        results: &[2],
+                        outputs: &[],
                     };
-                    assert_eq!(agree(&program, &[x, y, 0.0]), Ok(()), "{kind} {n} {x} {y}");
+                    assert_eq!(
+                        agree(&program, &[0.5, y, 0.0], &[x]),
+                        Ok(()),
+                        "{kind} {n} {x} {y}"
+                    );
                 }
             }
         }
@@ -140,15 +160,25 @@ fn a_slot_beyond_the_workspace_is_refused_before_any_code_exists() {
         a,
         b,
     };
-    for (code, outputs, bad) in [
-        (vec![add(3, 0, 1)], vec![2], (0, 3)),
-        (vec![add(2, 0, 7)], vec![2], (0, 7)),
-        (vec![add(2, 0, 1), add(2, 9, 1)], vec![2], (1, 9)),
-        (vec![add(2, 0, 1)], vec![5], (1, 5)),
+    for (code, args, results, outputs, bad) in [
+        (vec![add(3, 0, 1)], vec![], vec![], vec![2], (0, 3)),
+        (vec![add(2, 0, 7)], vec![], vec![], vec![2], (0, 7)),
+        (
+            vec![add(2, 0, 1), add(2, 9, 1)],
+            vec![],
+            vec![],
+            vec![2],
+            (1, 9),
+        ),
+        (vec![add(2, 0, 1)], vec![], vec![], vec![5], (1, 5)),
+        (vec![add(2, 0, 1)], vec![0, 4], vec![2], vec![], (1, 4)),
+        (vec![add(2, 0, 1)], vec![0], vec![2, 3], vec![], (1, 3)),
     ] {
         let program = Program {
             slots: 3,
             code: &code,
+            args: &args,
+            results: &results,
             outputs: &outputs,
         };
         assert_eq!(
@@ -170,6 +200,8 @@ fn a_slot_beyond_the_workspace_is_refused_before_any_code_exists() {
     let program = Program {
         slots: 2,
         code: &neg,
+        args: &[],
+        results: &[],
         outputs: &[1],
     };
     assert!(Native::compile(&program).is_ok());
@@ -188,12 +220,45 @@ fn slots_the_program_does_not_write_keep_their_values() {
     let program = Program {
         slots: 4,
         code: &code,
+        args: &[],
+        results: &[],
         outputs: &[2, 0, 3],
     };
     let native = Native::compile(&program).unwrap();
     let mut w = [3.0, 4.0, 0.0, 9.5];
-    native.run(&mut w);
+    native.run(&mut w, &[], &mut []);
     assert_eq!(w, [3.0, 4.0, 12.0, 9.5]);
+}
+
+/// Arguments come from the argument array and results go to the result array, results that
+/// are arguments or inputs passed through; an argument named as an output is left in the
+/// workspace as the interpreter leaves it, and the result array's other entries and the
+/// workspace's other slots are not touched.
+#[test]
+fn arguments_and_results_go_through_their_arrays() {
+    let code = [Instr {
+        op: Op::Sub,
+        dst: 3,
+        a: 1,
+        b: 0,
+    }];
+    let program = Program {
+        slots: 5,
+        code: &code,
+        args: &[1, 2],
+        results: &[3, 2, 0],
+        outputs: &[2],
+    };
+    let native = Native::compile(&program).unwrap();
+    let mut w = [1.5, -1.0, -1.0, -1.0, 7.0];
+    let mut out = [0.0; 4];
+    native.run(&mut w, &[10.0, 20.0, 30.0], &mut out);
+    assert_eq!(out, [8.5, 20.0, 1.5, 0.0]);
+    assert_eq!(w, [1.5, -1.0, 20.0, -1.0, 7.0]);
+    let (mut wi, mut oi) = ([1.5, -1.0, -1.0, -1.0, 7.0], [0.0; 4]);
+    program.run(&mut wi, &[10.0, 20.0, 30.0], &mut oi);
+    assert_eq!(oi, out);
+    assert_eq!(wi[2], w[2]);
 }
 
 /// One compiled function serves several threads at once, each with its own workspace.
@@ -216,7 +281,9 @@ fn one_compiled_function_serves_several_threads_at_once() {
     let program = Program {
         slots: 3,
         code: &code,
-        outputs: &[2],
+        args: &[0],
+        results: &[2],
+        outputs: &[],
     };
     let native = Native::compile(&program).unwrap();
     std::thread::scope(|s| {
@@ -224,9 +291,10 @@ fn one_compiled_function_serves_several_threads_at_once() {
             s.spawn(move || {
                 for k in 0..10_000 {
                     let x = f64::from(t * 10_000 + k) * 1e-3;
-                    let mut w = [x, 0.0, 0.0];
-                    native.run(&mut w);
-                    assert_eq!(w[2].to_bits(), x.sin().powi(3).to_bits());
+                    let mut w = [0.0; 3];
+                    let mut out = [0.0];
+                    native.run(&mut w, &[x, 5.0], &mut out);
+                    assert_eq!(out[0].to_bits(), x.sin().powi(3).to_bits());
                 }
             });
         }

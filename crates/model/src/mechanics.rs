@@ -434,3 +434,110 @@ pub fn cholesky_substitute(m: &[f64], b: &mut [f64], n: usize) {
         b[i] = s / m[i * n + i];
     }
 }
+
+/// The first-order system `y' = F(t, y)` of a model's equations as nodes: what one
+/// evaluation of its right-hand side computes, so that the whole of it is one tape (and one
+/// compiled function) rather than a tape followed by a solve.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FirstOrder {
+    /// `y'` in state order ([`Layout`]): `q̇`, then `R ω̂` of each SO(3) frame (by rows), then
+    /// the accelerations `M⁻¹ f`.
+    pub derivative: Vec<Id>,
+    /// The pivots `d_j` of the Cholesky factorization of `M` (before their square roots): `M`
+    /// is positive definite, and the accelerations are valid, where every one is positive.
+    pub pivots: Vec<Id>,
+}
+
+/// [`FirstOrder`] of `equations`: the kinematics `q' = q̇`, `Ṙ = R ω̂`, and `v̇ = M⁻¹ f` by the
+/// operations of [`cholesky_factor`] and [`cholesky_substitute`] on the nodes of `M` and `f`,
+/// in their order. A mass matrix of the parameters alone (`constant_mass`) is inverted on the
+/// nodes (its inverse then depends on the parameters only: a tape's prelude), and each
+/// acceleration is the sum `Σⱼ (M⁻¹)ᵢⱼ fⱼ` in the order of `j`; otherwise `f` goes through
+/// the forward and back substitutions. The graph folds the products with structural zeros
+/// of `M` (a diagonal inertia), which changes no finite value.
+pub fn first_order(
+    g: &mut Graph,
+    equations: &Equations,
+    layout: Layout,
+    constant_mass: bool,
+) -> FirstOrder {
+    let (n, dof) = (layout.n, layout.dof());
+    let mut derivative: Vec<Id> = (0..n).map(|i| g.input(layout.qd(i))).collect();
+    for f in 0..layout.so3 {
+        let r = layout.rotation(g, f);
+        let [wx, wy, wz] = layout.angular_velocity(g, f);
+        let mut cross = |a: Id, b: Id, c: Id, d: Id| {
+            let x = g.mul(a, b);
+            let y = g.mul(c, d);
+            g.sub(x, y)
+        };
+        for [r0, r1, r2] in r {
+            derivative.push(cross(r1, wz, r2, wy));
+            derivative.push(cross(r2, wx, r0, wz));
+            derivative.push(cross(r0, wy, r1, wx));
+        }
+    }
+    // The lower triangle of L (row-major, as `cholesky_factor` leaves it in M).
+    let mut l = equations.mass.clone();
+    let mut pivots = Vec::with_capacity(dof);
+    for j in 0..dof {
+        let mut d = l[j * dof + j];
+        for k in 0..j {
+            let p = g.mul(l[j * dof + k], l[j * dof + k]);
+            d = g.sub(d, p);
+        }
+        pivots.push(d);
+        let d = g.call(Fun::Sqrt, d);
+        l[j * dof + j] = d;
+        for i in j + 1..dof {
+            let mut s = l[i * dof + j];
+            for k in 0..j {
+                let p = g.mul(l[i * dof + k], l[j * dof + k]);
+                s = g.sub(s, p);
+            }
+            l[i * dof + j] = g.div(s, d);
+        }
+    }
+    let substitute = |g: &mut Graph, b: &mut [Id]| {
+        for i in 0..dof {
+            let mut s = b[i];
+            for k in 0..i {
+                let p = g.mul(l[i * dof + k], b[k]);
+                s = g.sub(s, p);
+            }
+            b[i] = g.div(s, l[i * dof + i]);
+        }
+        for i in (0..dof).rev() {
+            let mut s = b[i];
+            for k in i + 1..dof {
+                let p = g.mul(l[k * dof + i], b[k]);
+                s = g.sub(s, p);
+            }
+            b[i] = g.div(s, l[i * dof + i]);
+        }
+    };
+    if constant_mass {
+        // The inverse column by column, as the substitution of each unit vector.
+        let (zero, one) = (g.constant(0.0), g.constant(1.0));
+        let mut inverse = vec![zero; dof * dof];
+        for j in 0..dof {
+            let mut e = vec![zero; dof];
+            e[j] = one;
+            substitute(g, &mut e);
+            for i in 0..dof {
+                inverse[i * dof + j] = e[i];
+            }
+        }
+        for i in 0..dof {
+            let terms: Vec<Id> = (0..dof)
+                .map(|j| g.mul(inverse[i * dof + j], equations.force[j]))
+                .collect();
+            derivative.push(g.sum(&terms));
+        }
+    } else {
+        let mut b = equations.force.clone();
+        substitute(g, &mut b);
+        derivative.extend(b);
+    }
+    FirstOrder { derivative, pivots }
+}

@@ -173,15 +173,19 @@ impl Tape {
         }
     }
 
-    /// The body compiled to native code ([`tumble_jit`]): run on a workspace prepared as for
-    /// [`Tape::run`] (inputs set, prelude run), it leaves the same bits in the output slots.
-    /// Square roots and absolute values are single instructions, integer powers the
-    /// multiplications of `f64::powi`, and the other functions calls of the same Rust
-    /// functions the interpreter calls ([`Fun::apply`]), so nothing is computed differently.
+    /// The body compiled to native code ([`tumble_jit`]), reading the inputs `args[i]` from
+    /// its argument array and writing its first `results` outputs to its result array: run on
+    /// a workspace prepared as for [`Tape::run`] (the other inputs set, prelude run), with
+    /// arguments `x`, it writes `out[i]` as [`Tape::output`] `i` after setting input
+    /// `args[k]` to `x[k]` and running [`Tape::run`], bit for bit, and leaves the other
+    /// outputs in the workspace. Square roots and absolute values are single instructions,
+    /// integer powers the multiplications of `f64::powi`, and the other functions calls of
+    /// the same Rust functions the interpreter calls ([`Fun::apply`]), so nothing is computed
+    /// differently.
     ///
     /// # Errors
     /// [`JitError`] where the machine has no code generator (the interpreter then serves).
-    pub fn compile(&self) -> Result<Native, JitError> {
+    pub fn compile(&self, args: &[u32], results: usize) -> Result<Native, JitError> {
         let code: Vec<tumble_jit::Instr> = self
             .body
             .iter()
@@ -192,10 +196,13 @@ impl Tape {
                 b: ins.b,
             })
             .collect();
+        let results = results.min(self.outputs.len());
         Native::compile(&Program {
             slots: self.slots,
             code: &code,
-            outputs: &self.outputs,
+            args,
+            results: &self.outputs[..results],
+            outputs: &self.outputs[results..],
         })
     }
 

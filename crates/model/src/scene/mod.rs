@@ -4,9 +4,12 @@
 //! its compositions) and the Taylor methods ([`ProblemKind::TaylorSeries`]: coefficients by
 //! automatic differentiation on the tape, [`crate::taylor`]).
 //!
-//! The state is `(q, q̇)`; each evaluation of the right-hand side runs the model's instruction
-//! tape (mass matrix and forces, [`crate::expr::tape`]) and solves `M q̈ = f` by Cholesky in
-//! a workspace allocated once per run.
+//! The state is `(q, q̇)`; each evaluation of the right-hand side runs one instruction tape
+//! ([`crate::expr::tape`]) in a workspace allocated once per run: the forces, the kinematics
+//! and the solve of `M q̈ = f` by Cholesky written out on the graph
+//! ([`crate::mechanics::first_order`]; a mass matrix of the parameters alone is inverted in
+//! the tape's prelude, once per run), compiled to native code where the machine has a code
+//! generator, reading the state and writing its derivative directly.
 //!
 //! Rows: `t`, the coordinates, their rates, `energy` (the energy function
 //! `h = Σ q̇ᵢ ∂L/∂q̇ᵢ − L`: the energy, or the Jacobi integral of a driven or rotating model),
@@ -36,6 +39,7 @@ use crate::expr::tape::Tape;
 use crate::expr::taylor::TaylorPlan;
 use crate::file::{Model, ModelFileError};
 use crate::group::Group;
+use crate::mechanics::first_order;
 use tumble_jit::Native;
 
 mod display;
@@ -44,6 +48,7 @@ mod on_group;
 mod run;
 
 use display::Display;
+use ode::state_args;
 pub use ode::{Evaluation, MAX_CONDITION, ModelOde};
 use on_group::group_problems;
 
@@ -52,12 +57,17 @@ use on_group::group_problems;
 pub struct ModelScene {
     info: &'static SceneInfo,
     model: Model,
-    /// Mass matrix (row-major) then forces.
+    /// Mass matrix (row-major) then forces: the Taylor recursions' tape, and the mass matrix
+    /// of [`ModelOde::mass_matrix`].
     rhs: Tape,
-    /// `rhs`'s body as native code, where the machine has a code generator.
+    /// The first-order right-hand side `y'` (the state's length), then the pivots of the
+    /// mass matrix's Cholesky factorization ([`first_order`]).
+    flow: Tape,
+    /// `flow`'s body as native code, where the machine has a code generator: the state as its
+    /// arguments, `y'` as its results, the pivots stored in the workspace.
     native: Option<Native>,
     /// Whether the mass matrix depends on the parameters only (a body on SO(3) with no
-    /// coordinates: its inertia): then it is factored once per run.
+    /// coordinates: its inertia): then it is factored once per run, in `flow`'s prelude.
     constant_mass: bool,
     /// Energy, momenta of the cyclic coordinates, outputs.
     row: Tape,
@@ -102,16 +112,23 @@ impl ModelScene {
         let layout = model.layout;
         let n = layout.n;
         let fixed = move |k: u32| layout.is_param(k);
+        let constant_mass = model
+            .equations
+            .mass
+            .iter()
+            .all(|&id| !model.graph.depends_on(id, &|k| !layout.is_param(k)));
+        let system = first_order(&mut model.graph, &model.equations, layout, constant_mass);
+        let mut flow_out = system.derivative;
+        flow_out.extend(system.pivots);
+        let flow = Tape::with_fixed(&model.graph, &flow_out, &fixed);
+        let native = flow
+            .compile(&state_args(&flow, layout), layout.state_len())
+            .ok();
         let eq = &model.equations;
         let (cyclic, autonomous) = symmetries(&model);
         let mut outputs = eq.mass.clone();
         outputs.extend_from_slice(&eq.force);
         let rhs = Tape::with_fixed(&model.graph, &outputs, &fixed);
-        let native = rhs.compile().ok();
-        let constant_mass = eq
-            .mass
-            .iter()
-            .all(|&id| !model.graph.depends_on(id, &|k| !layout.is_param(k)));
         let taylor = (layout.so3 == 0).then(|| TaylorPlan::new(&rhs, 1 + 2 * n));
         let display = Display::of(&model);
         let mut row_out = vec![eq.energy];
@@ -200,6 +217,7 @@ impl ModelScene {
             info,
             model,
             rhs,
+            flow,
             native,
             constant_mass,
             row,
@@ -225,10 +243,10 @@ impl ModelScene {
         &self.model
     }
 
-    /// Instructions per right-hand-side evaluation (the tape's body).
+    /// Instructions per right-hand-side evaluation (the body of its tape).
     #[must_use]
     pub fn rhs_instructions(&self) -> usize {
-        self.rhs.len()
+        self.flow.len()
     }
 
     /// The inputs of the model's tapes at `params`: time, coordinates and rates zero.

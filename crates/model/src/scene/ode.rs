@@ -10,7 +10,7 @@ use tumble_scenarios::{Params, SceneError};
 
 use super::ModelScene;
 use crate::expr::tape::Tape;
-use crate::mechanics::{Layout, cholesky_factor, cholesky_solve, cholesky_substitute};
+use crate::mechanics::Layout;
 use crate::taylor::ModelTaylor;
 use tumble_jit::{JitError, Native};
 
@@ -34,7 +34,9 @@ impl ModelScene {
     /// # Errors
     /// [`JitError`] where the machine has no code generator.
     pub fn compile_rhs(&self) -> Result<Native, JitError> {
-        self.rhs.compile()
+        let layout = self.model.layout;
+        self.flow
+            .compile(&state_args(&self.flow, layout), layout.state_len())
     }
 
     /// The right-hand side at `params`, its workspace allocated here once, evaluated as
@@ -50,47 +52,36 @@ impl ModelScene {
     #[must_use]
     pub fn ode_with(&self, params: &Params, evaluation: Evaluation) -> ModelOde<'_> {
         let layout = self.model.layout;
-        let dof = layout.dof();
-        let mut slots = self.rhs.workspace();
         let inputs = self.inputs(params);
-        let k = inputs.len().min(slots.len());
-        slots[..k].copy_from_slice(&inputs[..k]);
-        self.rhs.run_prelude(&mut slots);
-        // A mass matrix of the parameters alone is in the prelude's results: inverted here
-        // once (Cholesky, column by column), each evaluation then multiplies by the inverse.
-        let mut m = vec![0.0; dof * dof];
-        let mut factored = false;
-        if self.constant_mass {
-            let mut l = vec![0.0; dof * dof];
-            for (i, x) in l.iter_mut().enumerate() {
-                *x = self.rhs.output(&slots, i);
-            }
-            if cholesky_factor(&mut l, dof) > 0.0 {
-                let mut e = vec![0.0; dof];
-                for j in 0..dof {
-                    e.fill(0.0);
-                    e[j] = 1.0;
-                    cholesky_substitute(&l, &mut e, dof);
-                    for i in 0..dof {
-                        m[i * dof + j] = e[i];
-                    }
-                }
-                factored = true;
-            }
-        }
+        let prepared = |tape: &Tape| {
+            let mut w = tape.workspace();
+            let k = inputs.len().min(w.len());
+            w[..k].copy_from_slice(&inputs[..k]);
+            tape.run_prelude(&mut w);
+            w
+        };
+        let (slots, mass) = (prepared(&self.flow), prepared(&self.rhs));
+        let state = layout.state_len();
+        // The pivots of a mass matrix of the parameters alone are results of the prelude:
+        // checked here once; others after each evaluation.
+        let pivots = state..state + layout.dof();
+        let (pivots, positive) = if self.constant_mass {
+            let positive = pivots.clone().all(|j| self.flow.output(&slots, j) > 0.0);
+            (state..state, positive)
+        } else {
+            (pivots, true)
+        };
         ModelOde {
-            tape: &self.rhs,
+            tape: &self.flow,
+            mass: &self.rhs,
             native: match evaluation {
                 Evaluation::Native => self.native,
                 Evaluation::Interpreted => None,
             },
             layout,
-            work: RefCell::new(Work {
-                slots,
-                m,
-                b: vec![0.0; dof],
-                factored,
-            }),
+            pivots,
+            positive,
+            work: RefCell::new(Work { slots, mass }),
         }
     }
 
@@ -180,14 +171,11 @@ impl ModelScene {
     }
 }
 
-/// The workspace of one run's right-hand side.
+/// The workspaces of one run's right-hand side and of its mass matrix.
 #[derive(Debug)]
 struct Work {
     slots: Vec<f64>,
-    m: Vec<f64>,
-    b: Vec<f64>,
-    /// `m` holds the inverse of a mass matrix that does not change during the run.
-    factored: bool,
+    mass: Vec<f64>,
 }
 
 /// How a model's right-hand side is evaluated.
@@ -199,83 +187,84 @@ pub enum Evaluation {
     Interpreted,
 }
 
+/// The arguments of a model's compiled right-hand side: its state `y`, inputs `1 ..` of the
+/// tape (the ones it has).
+pub(super) fn state_args(flow: &Tape, layout: Layout) -> Vec<u32> {
+    (1..=layout.state_len() as u32)
+        .take_while(|&k| (k as usize) < flow.inputs())
+        .collect()
+}
+
 /// A model's first-order system `(q, q̇)' = (q̇, M⁻¹ f)` at fixed parameters.
 #[derive(Debug)]
 pub struct ModelOde<'a> {
+    /// `y'` then the pivots ([`first_order`]).
     tape: &'a Tape,
+    /// Mass matrix then forces.
+    mass: &'a Tape,
     native: Option<Native>,
     layout: Layout,
+    /// The outputs of `tape` that are pivots to check after each evaluation (none for a
+    /// mass matrix of the parameters alone).
+    pivots: std::ops::Range<usize>,
+    /// Whether the pivots checked once per run were positive.
+    positive: bool,
     work: RefCell<Work>,
 }
 
 impl ModelOde<'_> {
-    fn evaluate(&self, t: f64, y: &[f64], w: &mut Work) {
-        let inputs = self.tape.inputs();
+    /// Outputs `range` of the mass matrix and forces' tape at `(t, y)`.
+    fn mass_outputs(&self, t: f64, y: &[f64], range: std::ops::Range<usize>) -> Vec<f64> {
+        let w = &mut self.work.borrow_mut().mass;
+        let inputs = self.mass.inputs();
         if inputs > 0 {
-            w.slots[0] = t;
+            w[0] = t;
             let m = (inputs - 1).min(y.len());
-            w.slots[1..=m].copy_from_slice(&y[..m]);
+            w[1..=m].copy_from_slice(&y[..m]);
         }
-        match self.native {
-            Some(f) => f.run(&mut w.slots),
-            None => self.tape.run(&mut w.slots),
-        }
+        self.mass.run(w);
+        range.map(|i| self.mass.output(w, i)).collect()
     }
 
     /// `M(q, t)` at `(t, y)`, row-major.
     #[must_use]
     pub fn mass_matrix(&self, t: f64, y: &[f64]) -> Vec<f64> {
-        let w = &mut *self.work.borrow_mut();
-        self.evaluate(t, y, w);
         let dof = self.layout.dof();
-        (0..dof * dof)
-            .map(|i| self.tape.output(&w.slots, i))
-            .collect()
+        self.mass_outputs(t, y, 0..dof * dof)
+    }
+
+    /// The generalized forces `f` of `M v̇ = f` at `(t, y)` ([`crate::mechanics::Equations`]).
+    #[must_use]
+    pub fn forces(&self, t: f64, y: &[f64]) -> Vec<f64> {
+        let dof = self.layout.dof();
+        self.mass_outputs(t, y, dof * dof..dof * dof + dof)
     }
 
     /// Writes `(q̇, q̈)` for the state `y = (q, q̇)` into `dy`; NaN accelerations where the mass
     /// matrix is not positive definite (the driver then stops with the state).
     pub fn rhs_slice(&self, t: f64, y: &[f64], dy: &mut [f64]) {
-        let layout = self.layout;
-        let (n, dof, v) = (layout.n, layout.dof(), layout.velocities_at());
-        let w = &mut *self.work.borrow_mut();
-        self.evaluate(t, y, w);
-        let Work {
-            slots,
-            m,
-            b,
-            factored,
-        } = w;
-        for i in 0..dof {
-            b[i] = self.tape.output(slots, dof * dof + i);
+        let w = &mut self.work.borrow_mut().slots;
+        let tape = self.tape;
+        let state = self.layout.state_len();
+        // Input 0 is time; the state's inputs follow (`state_args`).
+        let inputs = tape.inputs();
+        if inputs > 0 {
+            w[0] = t;
         }
-        // Kinematics: q' = q̇, and R' = R ω̂ for each orientation on SO(3).
-        dy[..n].copy_from_slice(&y[v..v + n]);
-        for f in 0..layout.so3 {
-            let r = n + 9 * f;
-            let o = v + n + 3 * f;
-            let (wx, wy, wz) = (y[o], y[o + 1], y[o + 2]);
-            for a in 0..3 {
-                let (r0, r1, r2) = (y[r + 3 * a], y[r + 3 * a + 1], y[r + 3 * a + 2]);
-                dy[r + 3 * a] = r1 * wz - r2 * wy;
-                dy[r + 3 * a + 1] = r2 * wx - r0 * wz;
-                dy[r + 3 * a + 2] = r0 * wy - r1 * wx;
+        match self.native {
+            Some(f) => f.run(w, y, dy),
+            None => {
+                let m = inputs.saturating_sub(1).min(state);
+                w[1..=m].copy_from_slice(&y[..m]);
+                tape.run(w);
+                for (i, d) in dy[..state].iter_mut().enumerate() {
+                    *d = tape.output(w, i);
+                }
             }
         }
-        if *factored {
-            for i in 0..dof {
-                let row = &m[i * dof..(i + 1) * dof];
-                dy[v + i] = row.iter().zip(b.iter()).map(|(a, x)| a * x).sum();
-            }
-            return;
-        }
-        for i in 0..dof * dof {
-            m[i] = self.tape.output(slots, i);
-        }
-        if cholesky_solve(m, b, dof) > 0.0 {
-            dy[v..v + dof].copy_from_slice(b);
-        } else {
-            dy[v..v + dof].fill(f64::NAN);
+        if !self.positive || self.pivots.clone().any(|j| !(tape.output(w, j) > 0.0)) {
+            let v = self.layout.velocities_at();
+            dy[v..state].fill(f64::NAN);
         }
     }
 }
