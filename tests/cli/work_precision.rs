@@ -76,8 +76,15 @@ fn work_precision_writes_csv_plots_and_manifest_with_a_ladder_per_integrator() {
     let manifest: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.join("manifest.json")).unwrap()).unwrap();
     assert_eq!(manifest["scene"], "free-body");
+    // The double-double Taylor method, checked by the exact flow.
     assert!(
         manifest["reference"]["method"]
+            .as_str()
+            .unwrap()
+            .starts_with("taylor-dd")
+    );
+    assert!(
+        manifest["reference"]["cross_check"]
             .as_str()
             .unwrap()
             .starts_with("exact")

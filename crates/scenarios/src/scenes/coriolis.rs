@@ -18,14 +18,17 @@
 use std::f64::consts::FRAC_PI_2;
 
 use nalgebra::{RealField, SVector, Vector3};
-use tumble_integrators::{Action, Direction, Event, Ode, ProblemKind};
+use tumble_integrators::taylor::{TaylorError, check_finite};
+use tumble_integrators::{Action, Direction, Event, Ode, ProblemKind, TaylorSystem};
 use tumble_kinematics::frames::{EARTH_ANGULAR_SPEED, RotatingFrame, earth_rotation_enu};
 
 use crate::error::SceneError;
 use crate::lagrangian::Lagrangian;
 use crate::params::{Domain, ParamSpec, Params};
 use crate::recommendation::Measure;
-use crate::scene::{Recommendation, Recorder, RunPlan, RunSummary, Scene, SceneInfo, run_vector};
+use crate::scene::{
+    Recommendation, Recorder, RunPlan, RunSummary, Scene, SceneInfo, run_taylor_vector, run_vector,
+};
 
 /// The drop in the rotating frame.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -89,6 +92,42 @@ impl Ode<SVector<f64, 6>> for CoriolisDrop {
     }
 }
 
+/// The drop's equations as a [`TaylorSystem`] on `(r, ṙ)`: linear, so the coefficients are
+/// `(k + 1) rₖ₊₁ = ṙₖ` and `(k + 1) ṙₖ₊₁ = −2 ω × ṙₖ − ω × (ω × rₖ)`, plus `(0, 0, −g)` at
+/// order 0 (Moore 1966; the right-hand side of [`CoriolisDrop`]).
+#[derive(Debug, Clone, Copy)]
+pub struct TaylorCoriolisDrop(pub CoriolisDrop);
+
+impl TaylorSystem for TaylorCoriolisDrop {
+    fn dim(&self) -> usize {
+        6
+    }
+
+    fn coefficients(
+        &self,
+        _t0: f64,
+        x0: &[f64],
+        order: usize,
+        coeffs: &mut [f64],
+    ) -> Result<(), TaylorError> {
+        let w = self.0.omega;
+        coeffs[..6].copy_from_slice(&x0[..6]);
+        for k in 0..order {
+            let at = k * 6;
+            let r = Vector3::new(coeffs[at], coeffs[at + 1], coeffs[at + 2]);
+            let v = Vector3::new(coeffs[at + 3], coeffs[at + 4], coeffs[at + 5]);
+            let gravity = if k == 0 { -self.0.g } else { 0.0 };
+            let a = Vector3::new(0.0, 0.0, gravity) - 2.0 * w.cross(&v) - w.cross(&w.cross(&r));
+            let scale = 1.0 / (k + 1) as f64;
+            let next = [v.x, v.y, v.z, a.x, a.y, a.z];
+            for (i, x) in next.iter().enumerate() {
+                coeffs[at + 6 + i] = x * scale;
+            }
+        }
+        check_finite(coeffs, 6, order)
+    }
+}
+
 static SPECS: [ParamSpec; 4] = [
     ParamSpec {
         name: "h",
@@ -128,7 +167,7 @@ pub static CORIOLIS_DROP: SceneInfo = SceneInfo {
     parameters: &SPECS,
     conserved: &["Jacobi integral 1/2 |v|^2 + g z - 1/2 |omega x r|^2 (per unit mass)"],
     oracle: "lands x = omega sin(colatitude) (2h)^(3/2) / (3 sqrt(g)) east: 2.2 cm from 100 m at the equator",
-    problems: &[ProblemKind::Ode],
+    problems: &[ProblemKind::Ode, ProblemKind::TaylorSeries],
     needs_dense_output: true,
     default_integrator: "dop853",
     default_step: 1e-3,
@@ -185,22 +224,46 @@ impl Scene for CoriolisDropScene {
             Direction::Falling,
             Action::Terminate,
         )];
-        run_vector(
-            &model,
-            y0,
-            plan,
-            info.columns().len(),
-            7,
-            |t, y, out| {
-                out[0] = t;
-                out[1..7].copy_from_slice(y.as_slice());
-                let r = Vector3::new(y[0], y[1], y[2]);
-                let v = Vector3::new(y[3], y[4], y[5]);
-                out[7] = model.jacobi_integral(&r, &v);
-                out[8] = model.jacobi_magnitude(&r, &v);
-            },
-            &mut events,
-            recorder,
-        )
+        let row = |t: f64, y: &SVector<f64, 6>, out: &mut [f64]| {
+            out[0] = t;
+            out[1..7].copy_from_slice(y.as_slice());
+            let r = Vector3::new(y[0], y[1], y[2]);
+            let v = Vector3::new(y[3], y[4], y[5]);
+            out[7] = model.jacobi_integral(&r, &v);
+            out[8] = model.jacobi_magnitude(&r, &v);
+        };
+        let columns = info.columns().len();
+        if plan.kind == ProblemKind::TaylorSeries {
+            return run_taylor_vector(
+                &TaylorCoriolisDrop(model),
+                y0,
+                plan,
+                columns,
+                7,
+                row,
+                &mut events,
+                recorder,
+            );
+        }
+        run_vector(&model, y0, plan, columns, 7, row, &mut events, recorder)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scenes::taylor_check::check;
+
+    #[test]
+    fn coriolis_drop_coefficients_follow_its_right_hand_side_and_flow() {
+        // A fast frame, so that the Coriolis and centrifugal terms weigh in every coefficient.
+        let model = CoriolisDrop::new(0.7, 0.8, 9.81);
+        let f = |y: &SVector<f64, 6>| {
+            let mut dy = SVector::zeros();
+            model.rhs(0.0, y, &mut dy);
+            dy
+        };
+        let x0 = SVector::from([1.0, -2.0, 100.0, 0.5, 0.3, -4.0]);
+        check(&TaylorCoriolisDrop(model), f, x0);
     }
 }

@@ -51,9 +51,11 @@
 //! state, energy and angular momentum from them.
 
 mod scenes;
+mod taylor;
 
 pub use scenes::{DRIVEN_HOOP, DrivenHoopScene, SPINNING_HOOP, SpinningHoopScene};
 pub(crate) use scenes::{critical_spin, critical_spin_guide, hoop_rate};
+pub use taylor::{TaylorDrivenHoop, TaylorSpinningHoop};
 
 use std::f64::consts::FRAC_PI_2;
 

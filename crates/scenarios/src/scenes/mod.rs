@@ -9,6 +9,9 @@ pub mod hoop;
 pub mod rigid;
 pub mod top;
 
+#[cfg(test)]
+pub(crate) mod taylor_check;
+
 use crate::error::SceneError;
 use crate::scene::Scene;
 

@@ -6,14 +6,17 @@ use std::f64::consts::FRAC_PI_2;
 use nalgebra::{SVector, Vector3};
 use tumble_integrators::ProblemKind;
 
-use super::{DrivenHoop, HoopParams, SpinningHoop, SpinningHoopHamiltonian, hoop_angular_momentum};
+use super::{
+    DrivenHoop, HoopParams, SpinningHoop, SpinningHoopHamiltonian, TaylorDrivenHoop,
+    TaylorSpinningHoop, hoop_angular_momentum,
+};
 use crate::drawing::{Drawing, Motion};
 use crate::error::SceneError;
 use crate::params::{Domain, ParamSpec, Params};
 use crate::recommendation::Measure;
 use crate::scene::{
     Guide, Recommendation, Recorder, RunPlan, RunSummary, Scene, SceneInfo, run_hamiltonian,
-    run_vector,
+    run_taylor_vector, run_vector,
 };
 
 /// Parameters shared by the hoop scenes, with their defaults.
@@ -104,7 +107,12 @@ pub static DRIVEN_HOOP: SceneInfo = SceneInfo {
     conserved: &["Jacobi integral (energy in the rotating frame)"],
     oracle: "alpha'' = (omega^2 cos alpha - g/a) sin alpha; cos alpha* = g/(a omega^2); \
              small oscillations Omega^2 = g/a - omega^2 (bottom), omega^2 - g^2/(a^2 omega^2) (alpha*)",
-    problems: &[ProblemKind::Separable, ProblemKind::Split, ProblemKind::Ode],
+    problems: &[
+        ProblemKind::Separable,
+        ProblemKind::Split,
+        ProblemKind::Ode,
+        ProblemKind::TaylorSeries,
+    ],
     needs_dense_output: false,
     default_integrator: "gauss8",
     default_step: 0.01,
@@ -206,6 +214,16 @@ impl Scene for DrivenHoopScene {
             ProblemKind::Separable | ProblemKind::Split => {
                 run_hamiltonian(&scene, y0, plan, columns, 3, row, recorder)
             }
+            ProblemKind::TaylorSeries => run_taylor_vector(
+                &TaylorDrivenHoop::new(&scene),
+                y0,
+                plan,
+                columns,
+                3,
+                row,
+                &mut [],
+                recorder,
+            ),
             _ => run_vector(&scene, y0, plan, columns, 3, row, &mut [], recorder),
         }
     }
@@ -253,7 +271,12 @@ pub static SPINNING_HOOP: SceneInfo = SceneInfo {
     parameters: &SPINNING_SPECS,
     conserved: &["energy", "Lz = (M a^2/2 + m a^2 sin^2 alpha) phi_dot"],
     oracle: "M=1, a=0.4, m=0.2, phi_dot=5 with the bead at the top gives phi_dot = 25/6 at 45 deg from the top",
-    problems: &[ProblemKind::Separable, ProblemKind::Split, ProblemKind::Ode],
+    problems: &[
+        ProblemKind::Separable,
+        ProblemKind::Split,
+        ProblemKind::Ode,
+        ProblemKind::TaylorSeries,
+    ],
     needs_dense_output: false,
     default_integrator: "gauss8",
     default_step: 0.01,
@@ -389,6 +412,16 @@ impl Scene for SpinningHoopScene {
                     recorder,
                 )
             }
+            ProblemKind::TaylorSeries => run_taylor_vector(
+                &TaylorSpinningHoop::new(&scene),
+                y0,
+                plan,
+                columns,
+                5,
+                row,
+                &mut [],
+                recorder,
+            ),
             _ => run_vector(&scene, y0, plan, columns, 5, row, &mut [], recorder),
         }
     }
