@@ -146,7 +146,7 @@ def free_hoop(hy):
 SCENES = {
     "free-body": (free_body, "split-exact2,split-exact4,taylor,vern9"),
     "heavy-top": (heavy_top, "taylor,split-exact8,vern8,vern9"),
-    "free-hoop": (free_hoop, "dop853,vern8,vern9,gauss8"),
+    "free-hoop": (free_hoop, "taylor,dop853,vern8,vern9,gauss8"),
 }
 
 # tumble's reference method where the scene offers it (the work-precision study's own).
