@@ -47,3 +47,13 @@ pub fn find(name: &str) -> Result<&'static dyn Scene, SceneError> {
                 .join(", "),
         })
 }
+
+/// `Σⱼ₌₀ᵏ aⱼ bₖ₋ⱼ` (a multiply and an add: `f64::mul_add` is a library call on an x86-64
+/// target without FMA, which the binary is built for).
+#[inline]
+pub(crate) fn cauchy(a: &[f64], b: &[f64], k: usize) -> f64 {
+    a[..=k]
+        .iter()
+        .zip(b[..=k].iter().rev())
+        .fold(0.0, |s, (x, y)| s + x * y)
+}

@@ -19,6 +19,7 @@
 
 use std::cell::RefCell;
 
+use crate::scenes::cauchy;
 use tumble_integrators::taylor::{TaylorError, TaylorSystem, check_finite};
 
 use super::EulerPoissonHoop;
@@ -120,16 +121,6 @@ impl TaylorHoop {
             series: RefCell::new(Series::default()),
         }
     }
-}
-
-/// `Σⱼ₌₀ᵏ aⱼ bₖ₋ⱼ` (a multiply and an add: `f64::mul_add` is a library call on an x86-64
-/// target without FMA, which the binary is built for).
-#[inline]
-fn cauchy(a: &[f64], b: &[f64], k: usize) -> f64 {
-    a[..=k]
-        .iter()
-        .zip(b[..=k].iter().rev())
-        .fold(0.0, |s, (x, y)| s + x * y)
 }
 
 impl TaylorSystem for TaylorHoop {

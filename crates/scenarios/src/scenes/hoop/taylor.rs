@@ -17,15 +17,7 @@ use tumble_integrators::TaylorSystem;
 use tumble_integrators::taylor::{TaylorError, check_finite};
 
 use super::{DrivenHoop, SpinningHoop};
-
-/// `Σⱼ₌₀ᵏ aⱼ bₖ₋ⱼ`.
-#[inline]
-fn cauchy(a: &[f64], b: &[f64], k: usize) -> f64 {
-    a[..=k]
-        .iter()
-        .zip(b[..=k].iter().rev())
-        .fold(0.0, |s, (x, y)| s + x * y)
-}
+use crate::scenes::cauchy;
 
 /// Series of one run, each `len` coefficients long (grown once to the largest order).
 #[derive(Debug, Default)]
