@@ -38,9 +38,10 @@ pub struct TaylorHeavyTop {
     double: Constants<f64>,
     /// `J⁻¹` and `w ρ` of the same `f64` inertia, weight and centre, in double-double.
     double_double: Constants<DoubleDouble>,
-    /// The coefficients of `ω`, 3 per order (grown once to the largest order asked).
-    omega: RefCell<Vec<f64>>,
-    omega_dd: RefCell<Vec<DoubleDouble>>,
+    /// The recursion's series (grown once to the largest order asked).
+    work: RefCell<Work<f64>>,
+    work_dd: RefCell<Work<DoubleDouble>>,
+    arch: pulp::Arch,
 }
 
 impl TaylorHeavyTop {
@@ -69,8 +70,9 @@ impl TaylorHeavyTop {
                 inverse: inverse_dd(inertia),
                 weighted_center: std::array::from_fn(|i| DoubleDouble::new_mul(center[i], weight)),
             },
-            omega: RefCell::new(Vec::new()),
-            omega_dd: RefCell::new(Vec::new()),
+            work: RefCell::new(Work::default()),
+            work_dd: RefCell::new(Work::default()),
+            arch: pulp::Arch::new(),
         }
     }
 }
@@ -93,77 +95,150 @@ fn inverse_dd(m: &Matrix3<f64>) -> [[DoubleDouble; 3]; 3] {
     std::array::from_fn(|i| std::array::from_fn(|j| cof(j, i).quotient(det)))
 }
 
-/// `Σⱼ₌₀ᵏ aⱼ × bₖ₋ⱼ` for 3-vectors whose coefficient `j` starts at `a(j)`, `b(j)`.
-#[inline]
-fn cross_series<S: SeriesScalar>(
-    k: usize,
-    a: impl Fn(usize) -> [S; 3],
-    b: impl Fn(usize) -> [S; 3],
-) -> [S; 3] {
-    let mut s = [S::ZERO; 3];
-    for j in 0..=k {
-        let (x, y) = (a(j), b(k - j));
-        s[0] += x[1] * y[2] - x[2] * y[1];
-        s[1] += x[2] * y[0] - x[0] * y[2];
-        s[2] += x[0] * y[1] - x[1] * y[0];
+/// The output component `i` of the twelve products `(rₐ × ω)ᵦ` (`i = 3b + a`, the layout of
+/// `R`) and `(m × ω)ᵦ` (`i = 9 + b`), each `uᵦ₊₁ wᵦ₊₂ − uᵦ₊₂ wᵦ₊₁`: where in a state its
+/// two `u` factors are, and which components of `ω` multiply them.
+struct Pattern {
+    first: [usize; N],
+    second: [usize; N],
+    w_first: [usize; N],
+    w_second: [usize; N],
+}
+
+const PATTERN: Pattern = {
+    let mut p = Pattern {
+        first: [0; N],
+        second: [0; N],
+        w_first: [0; N],
+        w_second: [0; N],
+    };
+    let mut i = 0;
+    while i < N {
+        // (base, stride): rows of R are strided by 3 (column-major), m is contiguous.
+        let (b, base, stride) = if i < 9 {
+            (i / 3, i % 3, 3)
+        } else {
+            (i - 9, 9, 1)
+        };
+        p.first[i] = base + stride * ((b + 1) % 3);
+        p.second[i] = base + stride * ((b + 2) % 3);
+        p.w_first[i] = (b + 2) % 3;
+        p.w_second[i] = (b + 1) % 3;
+        i += 1;
     }
-    s
+    p
+};
+
+/// The series the recursion keeps per order `j`, each laid out by output component
+/// ([`PATTERN`]): the first and second `u` factors of `xⱼ`, and the `ω` components that
+/// multiply them, so that order `k` of all twelve products is
+/// `Σⱼ firstⱼ ⊙ w_firstₖ₋ⱼ − secondⱼ ⊙ w_secondₖ₋ⱼ`, contiguous element-wise work.
+#[derive(Debug, Clone, Default)]
+struct Work<S> {
+    first: Vec<S>,
+    second: Vec<S>,
+    w_first: Vec<S>,
+    w_second: Vec<S>,
+}
+
+impl<S: SeriesScalar> Work<S> {
+    fn reserve(&mut self, order: usize) {
+        let len = N * (order + 1);
+        if self.first.len() < len {
+            for v in [
+                &mut self.first,
+                &mut self.second,
+                &mut self.w_first,
+                &mut self.w_second,
+            ] {
+                v.resize(len, S::ZERO);
+            }
+        }
+    }
 }
 
 /// The recursion of the module doc in any scalar: coefficients `0 ..= order` of the solution
 /// through `x0` into `coeffs`.
+///
+/// Order `k` is one pass over `j = 0 ..= k` accumulating all twelve Cauchy sums at once,
+/// `(rₐ × ω)ₖ = Σⱼ rₐ,ⱼ × ωₖ₋ⱼ` for the three rows `rₐ` of `R` and `(m × ω)ₖ`, each term in the
+/// form of a cross product's component, `uᵦ₊₁ wᵦ₊₂ − uᵦ₊₂ wᵦ₊₁`, summed over `j` upwards.
+#[inline(always)]
 fn expand<S: SeriesScalar>(
     c: &Constants<S>,
-    omega: &mut Vec<S>,
+    work: &mut Work<S>,
     x0: &[S],
     order: usize,
     coeffs: &mut [S],
 ) -> Result<(), TaylorError> {
     coeffs[..N].copy_from_slice(&x0[..N]);
-    if omega.len() < 3 * (order + 1) {
-        omega.resize(3 * (order + 1), S::ZERO);
-    }
+    work.reserve(order);
     let (a, wr) = (&c.inverse, &c.weighted_center);
     for k in 0..order {
+        let x = &coeffs[k * N..(k + 1) * N];
         // ωₖ = J⁻¹ mₖ (a row of J⁻¹ times mₖ, summed left to right).
-        let at = k * N + 9;
-        let mk = [coeffs[at], coeffs[at + 1], coeffs[at + 2]];
-        for (i, row) in a.iter().enumerate() {
-            omega[3 * k + i] = row[0] * mk[0] + row[1] * mk[1] + row[2] * mk[2];
+        let omega: [S; 3] =
+            std::array::from_fn(|i| a[i][0] * x[9] + a[i][1] * x[10] + a[i][2] * x[11]);
+        let at = k * N..(k + 1) * N;
+        let (first, second) = (&mut work.first[at.clone()], &mut work.second[at.clone()]);
+        let (w_first, w_second) = (&mut work.w_first[at.clone()], &mut work.w_second[at]);
+        for i in 0..N {
+            first[i] = x[PATTERN.first[i]];
+            second[i] = x[PATTERN.second[i]];
+            w_first[i] = omega[PATTERN.w_first[i]];
+            w_second[i] = omega[PATTERN.w_second[i]];
         }
-        let w = |j: usize| [omega[3 * j], omega[3 * j + 1], omega[3 * j + 2]];
-        let scale = S::of(1.0).quotient(S::of((k + 1) as f64));
-        let mut next = [S::ZERO; N];
-        // Each row of R: (rₐ × ω)ₖ; R[a][b] is component b·3 + a.
-        for row in 0..3 {
-            let r = |j: usize| {
-                let at = j * N + row;
-                [coeffs[at], coeffs[at + 3], coeffs[at + 6]]
-            };
-            let s = cross_series(k, r, w);
-            for (b, v) in s.iter().enumerate() {
-                next[b * 3 + row] = *v * scale;
+        let mut sums = [S::ZERO; N];
+        let len = (k + 1) * N;
+        let ups = work.first[..len]
+            .chunks_exact(N)
+            .zip(work.second[..len].chunks_exact(N));
+        let downs = work.w_first[..len]
+            .chunks_exact(N)
+            .zip(work.w_second[..len].chunks_exact(N))
+            .rev();
+        for ((u1, u2), (w1, w2)) in ups.zip(downs) {
+            for i in 0..N {
+                sums[i] += u1[i] * w1[i] - u2[i] * w2[i];
             }
         }
-        // (m × ω)ₖ + w (Rᵀe₃)ₖ × ρ, Rᵀe₃ the third row.
-        let m = |j: usize| {
-            let at = j * N + 9;
-            [coeffs[at], coeffs[at + 1], coeffs[at + 2]]
-        };
-        let s = cross_series(k, m, w);
-        let at = k * N + 2;
-        let g = [coeffs[at], coeffs[at + 3], coeffs[at + 6]];
+        // + w (Rᵀe₃)ₖ × ρ, Rᵀe₃ the third row.
+        let g = [x[2], x[5], x[8]];
         let torque = [
             g[1] * wr[2] - g[2] * wr[1],
             g[2] * wr[0] - g[0] * wr[2],
             g[0] * wr[1] - g[1] * wr[0],
         ];
-        for i in 0..3 {
-            next[9 + i] = (s[i] + torque[i]) * scale;
+        let scale = S::of(1.0).quotient(S::of((k + 1) as f64));
+        let next = &mut coeffs[(k + 1) * N..(k + 2) * N];
+        for i in 0..9 {
+            next[i] = sums[i] * scale;
         }
-        coeffs[(k + 1) * N..(k + 2) * N].copy_from_slice(&next);
+        for i in 0..3 {
+            next[9 + i] = (sums[9 + i] + torque[i]) * scale;
+        }
     }
     check_finite(coeffs, N, order)
+}
+
+/// [`expand`] in `f64`, compiled for the instruction set `pulp` finds at run time (inlined
+/// into its target-feature function, so that the element-wise sums use the widest vectors;
+/// the operations and their order are those of the baseline, so the result is the same bit
+/// for bit).
+struct Expand<'a> {
+    c: &'a Constants<f64>,
+    work: &'a mut Work<f64>,
+    x0: &'a [f64],
+    order: usize,
+    coeffs: &'a mut [f64],
+}
+
+impl pulp::WithSimd for Expand<'_> {
+    type Output = Result<(), TaylorError>;
+    #[inline(always)]
+    fn with_simd<V: pulp::Simd>(self, _: V) -> Self::Output {
+        expand(self.c, self.work, self.x0, self.order, self.coeffs)
+    }
 }
 
 impl TaylorSystem for TaylorHeavyTop {
@@ -178,13 +253,13 @@ impl TaylorSystem for TaylorHeavyTop {
         order: usize,
         coeffs: &mut [f64],
     ) -> Result<(), TaylorError> {
-        expand(
-            &self.double,
-            &mut self.omega.borrow_mut(),
+        self.arch.dispatch(Expand {
+            c: &self.double,
+            work: &mut self.work.borrow_mut(),
             x0,
             order,
             coeffs,
-        )
+        })
     }
 
     fn double_double(&self) -> Option<&dyn DoubleDoubleSystem> {
@@ -202,7 +277,7 @@ impl DoubleDoubleSystem for TaylorHeavyTop {
     ) -> Result<(), TaylorError> {
         expand(
             &self.double_double,
-            &mut self.omega_dd.borrow_mut(),
+            &mut self.work_dd.borrow_mut(),
             x0,
             order,
             coeffs,

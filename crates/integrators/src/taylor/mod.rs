@@ -131,10 +131,13 @@ pub fn check_finite<S: SeriesScalar>(
     n: usize,
     order: usize,
 ) -> Result<(), TaylorError> {
-    match coeffs[..(order + 1) * n]
-        .iter()
-        .position(|c| !c.is_finite())
-    {
+    let coeffs = &coeffs[..(order + 1) * n];
+    // Branch-free over blocks (vectorizable), the search only when one is not finite.
+    let finite = |block: &[S]| block.iter().fold(true, |ok, c| ok & c.is_finite());
+    if coeffs.chunks(16).all(finite) {
+        return Ok(());
+    }
+    match coeffs.iter().position(|c| !c.is_finite()) {
         None => Ok(()),
         Some(at) => Err(TaylorError::NonFinite {
             order: at / n.max(1),
@@ -370,8 +373,17 @@ impl<Y: crate::VectorState> TaylorStepper<Y> {
 
     /// Commits the step of size `h` from the cached point: the state at its end, and the
     /// coefficients kept as the step's dense output.
+    ///
+    /// The polynomial is summed at the step the driver's clock takes, `fl(t + h) − t` (exact
+    /// when `|t| ≥ |h|`: Fast2Sum, Dekker 1971), not at `h`: the state then belongs to the time
+    /// the driver records, and the rounding of `t + h` (up to half an ulp of `t` per step) does
+    /// not accumulate into the solution as a phase error. On a top spinning at 50 rad/s over
+    /// 400 steps to `t = 10` that drift alone is about `10⁻¹³` (the time's random walk,
+    /// `√400 · 4·10⁻¹⁶ s`, times the spin); heyoka carries its time in double length for the
+    /// same reason (Biscani & Izzo 2021, §4).
     fn commit(&mut self, t: f64, y: &mut Y, h: f64) {
-        Self::sum(&self.coeffs, self.n, self.order, h, y.as_mut_slice());
+        let step = (t + h) - t;
+        Self::sum(&self.coeffs, self.n, self.order, step, y.as_mut_slice());
         std::mem::swap(&mut self.coeffs, &mut self.dense);
         if self.coeffs.len() < self.dense.len() {
             self.coeffs.resize(self.dense.len(), 0.0);

@@ -324,7 +324,9 @@ impl Batch {
                 if last {
                     step = t_end - t[l];
                 }
-                step_of[l] = step;
+                // The step the lane's clock takes, as the scalar method sums it
+                // (`tumble_integrators::TaylorStepper`): `fl(t + h) − t`.
+                step_of[l] = (t[l] + step) - t[l];
                 last_of[l] = last;
             }
             // Every stepping lane's state at the end of its step, and Γ_z' at the sampling
