@@ -1,25 +1,17 @@
-//! The `manifest.json` of sweep and work–precision folders: how the results were made, as
+//! The `manifest.json` of sweep folders (a work–precision folder's is
+//! `tumble_studies::work_precision::record::StudyRecord`): how the results were made, as
 //! `Serialize` types. Fields are declared in alphabetical order, the order in which the files
 //! have always listed them.
 
 use std::collections::BTreeMap;
 
 use serde::Serialize;
-use tumble_scenarios::{Params, StepControl};
+use tumble_scenarios::Params;
 
 use crate::provenance::Provenance;
 use tumble_studies::sweep::{
     AxisValues, CheckReport, ComputeRecord, Sampling, Shard, SweepDefinition, SweepReport,
 };
-use tumble_studies::work_precision::{Config, Ladder, Reference};
-
-/// `(dt, tol)` of a step control: one of them is `None`.
-fn step_fields(step: StepControl) -> (Option<f64>, Option<f64>) {
-    match step {
-        StepControl::Fixed(h) => (Some(h), None),
-        StepControl::Tolerance(t) => (None, Some(t)),
-    }
-}
 
 /// The fixed parameters (those not swept).
 fn fixed(params: &Params, swept: &[&str]) -> BTreeMap<String, f64> {
@@ -86,7 +78,7 @@ struct DefinitionJson {
 impl DefinitionJson {
     fn new(def: &SweepDefinition) -> Self {
         let swept: Vec<&str> = def.axes.iter().map(|a| a.parameter).collect();
-        let (dt, tol) = step_fields(def.plan.step);
+        let (dt, tol) = def.plan.step.dt_tol();
         DefinitionJson {
             axes: def
                 .axes
@@ -200,7 +192,7 @@ struct MetricChangeJson {
 
 impl SelfCheckJson {
     fn new(c: &CheckReport, tolerance: f64) -> Self {
-        let (dt, tol) = step_fields(c.setting);
+        let (dt, tol) = c.setting.dt_tol();
         SelfCheckJson {
             converged: c.converged(tolerance),
             dt,
@@ -221,7 +213,7 @@ impl SelfCheckJson {
                 .collect(),
             points: c.points.clone(),
             screen: c.screen.map(|s| {
-                let (dt, tol) = step_fields(s);
+                let (dt, tol) = s.dt_tol();
                 dt.map(|v| ("dt", v))
                     .into_iter()
                     .chain(tol.map(|v| ("tol", v)))
@@ -357,7 +349,7 @@ impl SweepManifest {
                 status: r.status.name(),
             })
             .collect();
-        let (dt, tol) = step_fields(def.plan.step);
+        let (dt, tol) = def.plan.step.dt_tol();
         let mut files = vec![
             "sweep.toml".to_string(),
             "journal.csv".to_string(),
@@ -383,7 +375,7 @@ impl SweepManifest {
             points: report.total,
             points_per_second: (totals.computed > 0 && wall > 0.0)
                 .then(|| totals.computed as f64 / wall),
-            provenance: Provenance::now(report.threads),
+            provenance: crate::provenance::now(report.threads),
             refinement: RefinementJson::new(def, &report.rows),
             resumed_points: report.resumed,
             self_check: self_check.map(|(c, tol)| SelfCheckJson::new(c, tol)),
@@ -418,104 +410,6 @@ impl RefinementJson {
             points_by_level: tumble_studies::sweep::refine::points_by_level(def, rows)?,
             threshold: r.threshold,
         })
-    }
-}
-
-/// The reference of a work–precision study.
-#[derive(Serialize)]
-struct ReferenceJson {
-    agreement: f64,
-    cross_check: String,
-    method: String,
-    self_agreement: f64,
-    self_check: String,
-}
-
-/// A rung that failed.
-#[derive(Serialize)]
-struct FailedRungJson {
-    control: String,
-    reason: String,
-}
-
-/// One integrator's ladder.
-#[derive(Serialize)]
-struct LadderJson {
-    failures: Vec<FailedRungJson>,
-    name: String,
-    /// A number, `null` for the exact flow, `"variable"` for a Taylor method.
-    order: tumble_integrators::Order,
-    rungs: usize,
-    stopped: String,
-}
-
-/// `manifest.json` of a work–precision folder.
-#[derive(Serialize)]
-pub struct WorkPrecisionManifest {
-    command: &'static str,
-    error: &'static str,
-    integrators: Vec<LadderJson>,
-    max_run_seconds: f64,
-    origin: String,
-    parameters: BTreeMap<String, f64>,
-    provenance: Provenance,
-    reference: ReferenceJson,
-    scene: String,
-    t_end: f64,
-    tumble_version: &'static str,
-    wall_time: &'static str,
-}
-
-impl WorkPrecisionManifest {
-    /// The manifest of the ladders of `scene` (from `origin`) at `params` over `[0, t_end]`;
-    /// `control_words` describes a step or tolerance.
-    #[must_use]
-    pub fn new(
-        scene: &str,
-        origin: &str,
-        params: &Params,
-        t_end: f64,
-        config: &Config,
-        reference: &Reference,
-        ladders: &[Ladder],
-        control_words: impl Fn(StepControl) -> String,
-    ) -> Self {
-        WorkPrecisionManifest {
-            command: "work-precision",
-            error: "max_i |y_i - y_ref_i| / (1 + |y_ref_i|) over the final coordinates and rates (quaternion up to sign)",
-            integrators: ladders
-                .iter()
-                .map(|l| LadderJson {
-                    failures: l
-                        .failures
-                        .iter()
-                        .map(|f| FailedRungJson {
-                            control: control_words(f.control),
-                            reason: f.reason.clone(),
-                        })
-                        .collect(),
-                    name: l.integrator.clone(),
-                    order: l.order,
-                    rungs: l.rungs.len(),
-                    stopped: l.stop.clone(),
-                })
-                .collect(),
-            max_run_seconds: config.max_run_seconds,
-            origin: origin.to_string(),
-            parameters: fixed(params, &[]),
-            provenance: Provenance::now(1),
-            reference: ReferenceJson {
-                agreement: reference.agreement,
-                cross_check: reference.check.clone(),
-                method: reference.method.clone(),
-                self_agreement: reference.self_agreement,
-                self_check: reference.self_check.clone(),
-            },
-            scene: scene.to_string(),
-            t_end,
-            tumble_version: env!("CARGO_PKG_VERSION"),
-            wall_time: "seconds per run observing only the initial and final states: median of 5 samples (3 for runs over 0.1 s), each the mean of back-to-back runs lasting at least 5 ms",
-        }
     }
 }
 

@@ -13,9 +13,9 @@ use tumble_plot::trajectory::RunResult;
 use tumble_plot::{FigureOptions, Format};
 use tumble_scenarios::StepControl;
 
-/// An error of the figure code (an `anyhow` chain) as a `ValueError`.
-fn failed(e: &anyhow::Error) -> PyErr {
-    PyValueError::new_err(format!("{e:#}"))
+/// An error of the figure code as a `ValueError`, with its causes.
+fn failed(e: &tumble_plot::PlotError) -> PyErr {
+    PyValueError::new_err(crate::message(e))
 }
 
 /// The figure options of `figure_size`, `font_size`, `dpi` and `svg_text`, checked.
@@ -38,7 +38,7 @@ fn options(
         size: figure_size
             .map(Size::parse)
             .transpose()
-            .map_err(|e| PyValueError::new_err(format!("figure_size: {e:#}")))?,
+            .map_err(|e| PyValueError::new_err(format!("figure_size: {}", crate::message(&e))))?,
         font_pt: font_size,
         dpi,
         svg_text,
@@ -130,11 +130,9 @@ pub(crate) fn plot_run(
     svg_text: &str,
 ) -> PyResult<()> {
     let opts = options(figure_size, font_size, dpi, svg_text)?;
-    let step = match (dt, tol) {
-        (Some(h), _) => StepControl::Fixed(h),
-        (None, Some(t)) => StepControl::Tolerance(t),
-        (None, None) => return Err(PyValueError::new_err("a run has dt or tol")),
-    };
+    let step = StepControl::from_dt_tol(dt, tol)
+        .map_err(crate::refused)?
+        .ok_or_else(|| PyValueError::new_err("dt and tol: a run has one of them"))?;
     let bytes = data.as_bytes();
     if bytes.len() != columns.len() * rows * 8 {
         return Err(PyValueError::new_err(format!(

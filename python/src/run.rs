@@ -1,17 +1,26 @@
 //! `simulate`, `work_precision`, and the catalogues of scenes and integrators.
+//!
+//! A run's record and a study's rows are handed to Python as the JSON of the same types the
+//! command line writes (`tumble_studies::record::RunRecord`,
+//! `tumble_studies::work_precision::record::RungRecord`), so their names cannot drift.
+
+use std::time::Instant;
 
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyList};
+use pyo3::types::PyDict;
 use tumble_integrators::Flow;
+use tumble_output::Provenance;
 use tumble_scenarios::scene::{CancelFlag, check_horizon};
 use tumble_scenarios::{Recorder, SceneError, StepControl, scenes};
 use tumble_studies::catalog;
-use tumble_studies::error_estimate::{self, ErrorEstimate, Tap, WrittenRows};
+use tumble_studies::error_estimate::{self, Tap, WrittenRows};
+use tumble_studies::record::{Estimated, RunRecord, RunSetup};
 use tumble_studies::simulation::{
-    Interruptible, LoadedScene, Naming, ParamOverride, RunRequest, failure_message, flag_words,
-    load_scene, number,
+    DEFAULT_ENERGY_WARN, Interruptible, LoadedScene, Naming, ParamOverride, RunRequest,
+    failure_message, flag_words, load_scene, number,
 };
+use tumble_studies::work_precision::record::RungRecord;
 use tumble_studies::work_precision::{self as ladders, Config};
 
 use crate::{SimulationError, f64_bytes, interruptible, refused};
@@ -72,24 +81,9 @@ pub(crate) fn type_name(v: &Bound<'_, PyAny>) -> String {
         .map_or_else(|_| "?".to_string(), |n| n.to_string())
 }
 
-/// A step control as `(dt, tol)`, one of them `None`.
-fn dt_tol(step: StepControl) -> (Option<f64>, Option<f64>) {
-    match step {
-        StepControl::Fixed(h) => (Some(h), None),
-        StepControl::Tolerance(t) => (None, Some(t)),
-    }
-}
-
-/// The step control of `dt` / `tol`.
-fn step(dt: Option<f64>, tol: Option<f64>) -> PyResult<Option<StepControl>> {
-    match (dt, tol) {
-        (Some(_), Some(_)) => Err(PyValueError::new_err(
-            "dt and tol: give one (a fixed step, or a tolerance for an adaptive integrator)",
-        )),
-        (Some(h), None) => Ok(Some(StepControl::Fixed(h))),
-        (None, Some(t)) => Ok(Some(StepControl::Tolerance(t))),
-        (None, None) => Ok(None),
-    }
+/// The provenance of a call: this extension's version; its build records no git commit.
+fn provenance(threads: usize) -> Provenance {
+    Provenance::now(env!("CARGO_PKG_VERSION"), "unknown", threads)
 }
 
 /// Runs a scene (see the Python docstring of `tumble.simulate`).
@@ -121,7 +115,7 @@ pub(crate) fn simulate<'py>(
     let loaded = load_scene(scene, &overrides(params)?).map_err(refused)?;
     let request = RunRequest {
         integrator,
-        step: step(dt, tol)?,
+        step: StepControl::from_dt_tol(dt, tol).map_err(refused)?,
         t_end,
         every,
         at,
@@ -131,17 +125,18 @@ pub(crate) fn simulate<'py>(
         cancel: None,
     };
     let plan = loaded.plan(&request, Naming::Python).map_err(refused)?;
-    let frame = loaded.frame_words();
     let LoadedScene {
         scene,
         origin,
         params,
+        frame,
         ..
     } = loaded;
     let info = scene.info();
     let columns = info.columns();
     let n = columns.len();
-    let (result, rows, estimate) = interruptible(
+    let start = Instant::now();
+    let (result, rows, wall_time_s, estimate) = interruptible(
         py,
         |flag| {
             let mut plan = plan.clone();
@@ -160,83 +155,45 @@ pub(crate) fn simulate<'py>(
             } else {
                 scene.simulate(&params, &plan, &mut rows)
             };
+            let wall_time_s = start.elapsed().as_secs_f64();
             // A cancelled companion is an interrupted call: `interruptible` raises
             // KeyboardInterrupt once the flag is set, whatever this returns.
             let estimate = match &result {
-                Ok(summary) if check => Some(error_estimate::estimate(
-                    scene, &params, &plan, summary, &written,
-                )),
-                _ => None,
+                Ok(summary) if check => {
+                    match error_estimate::estimate(scene, &params, &plan, summary, &written) {
+                        Ok(e) => Estimated::Done(e),
+                        Err(reason) => Estimated::Failed(reason),
+                    }
+                }
+                _ => Estimated::Off,
             };
-            (result, rows.0, estimate)
+            (result, rows.0, wall_time_s, estimate)
         },
         |_| Ok(()),
     )?;
     let summary = result.map_err(|e| SimulationError::new_err(failure_message(info, &e)))?;
+    let record = RunRecord::new(
+        provenance(1),
+        &RunSetup {
+            info,
+            origin: &origin,
+            frame: frame.as_deref(),
+            params: &params,
+            plan: &plan,
+        },
+        &summary,
+        &estimate,
+        DEFAULT_ENERGY_WARN,
+        String::new(),
+        wall_time_s,
+    );
     let out = PyDict::new(py);
-    out.set_item("columns", &columns)?;
+    out.set_item("record", serde_json::to_string(&record).map_err(refused)?)?;
     let data: Vec<f64> = rows.concat();
     out.set_item("data", f64_bytes(py, &data))?;
-    out.set_item("rows", summary.rows)?;
-    out.set_item("scene", info.name)?;
     out.set_item("coordinates", info.coordinates)?;
     out.set_item("rates", tumble_studies::simulation::rate_columns(info))?;
-    out.set_item("origin", origin)?;
-    out.set_item("frame", frame)?;
-    let parameters = PyDict::new(py);
-    for (k, v) in params.iter() {
-        parameters.set_item(k, v)?;
-    }
-    out.set_item("parameters", parameters)?;
-    out.set_item("integrator", plan.integrator())?;
-    let (dt, tol) = dt_tol(plan.step);
-    out.set_item("dt", dt)?;
-    out.set_item("tol", tol)?;
-    out.set_item("t_end", plan.t_end)?;
-    out.set_item("every", plan.every)?;
-    out.set_item("at", plan.times.clone())?;
-    out.set_item("steps", summary.steps)?;
-    out.set_item("evaluations", summary.evaluations)?;
-    out.set_item("reached_t", summary.t)?;
-    out.set_item("max_energy_rel_err", summary.max_energy_rel_err)?;
-    out.set_item("error_estimate", estimate_dict(py, estimate)?)?;
-    out.set_item("version", env!("CARGO_PKG_VERSION"))?;
     Ok(out)
-}
-
-/// The error estimate as a dict (`None` with `check=False`): `final` and `max` (the largest
-/// over the compared rows), `max_t`, `rows_compared`, `trust` and `trust_reason`, the
-/// companion's and the check's settings; or `status='failed'` with the `reason`.
-fn estimate_dict<'py>(
-    py: Python<'py>,
-    estimate: Option<Result<ErrorEstimate, String>>,
-) -> PyResult<Option<Bound<'py, PyDict>>> {
-    let Some(estimate) = estimate else {
-        return Ok(None);
-    };
-    let d = PyDict::new(py);
-    match estimate {
-        Err(reason) => {
-            d.set_item("status", "failed")?;
-            d.set_item("reason", reason)?;
-        }
-        Ok(e) => {
-            d.set_item("status", "estimated")?;
-            d.set_item("final", e.final_error)?;
-            d.set_item("max", e.max_error)?;
-            d.set_item("max_t", e.max_error_t)?;
-            d.set_item("rows_compared", e.rows_compared)?;
-            d.set_item("trust", e.trust.key())?;
-            d.set_item("trust_reason", e.trust_words())?;
-            d.set_item("companion", error_estimate::words(e.companion))?;
-            d.set_item("check", e.check.map(error_estimate::words))?;
-            d.set_item("expected_ratio", e.expected_ratio)?;
-            d.set_item("observed_ratio", e.observed_ratio)?;
-            d.set_item("factor", e.factor)?;
-            d.set_item("round_off", e.round_off)?;
-        }
-    }
-    Ok(Some(d))
 }
 
 /// `tumble scenes --json`, as text.
@@ -297,7 +254,7 @@ pub(crate) fn work_precision<'py>(
     let mut config = Config::new(info);
     config.t_end = t_end;
     config.max_run_seconds = max_seconds;
-    config.max_reference_seconds = 60.0 * max_seconds;
+    config.max_reference_seconds = Config::REFERENCE_FACTOR * max_seconds;
     let (scene, params) = (loaded.scene, loaded.params);
     let outcome = interruptible(
         py,
@@ -334,20 +291,8 @@ pub(crate) fn work_precision<'py>(
     out.set_item("reference", &reference.method)?;
     out.set_item("cross_check", &reference.check)?;
     out.set_item("agreement", reference.agreement)?;
-    let rungs = PyList::empty(py);
-    for r in ladders.iter().flat_map(|l| &l.rungs) {
-        let row = PyDict::new(py);
-        row.set_item("integrator", &r.integrator)?;
-        let (dt, tol) = dt_tol(r.control);
-        row.set_item("dt", dt)?;
-        row.set_item("tol", tol)?;
-        row.set_item("steps", r.steps)?;
-        row.set_item("evaluations", r.evaluations)?;
-        row.set_item("error", r.error)?;
-        row.set_item("max_energy_rel_err", r.max_energy_rel_err)?;
-        row.set_item("wall_time_s", r.seconds)?;
-        rungs.append(row)?;
-    }
+    out.set_item("columns", RungRecord::COLUMNS.to_vec())?;
+    let rungs = serde_json::to_string(&RungRecord::of(&ladders)).map_err(refused)?;
     out.set_item("rungs", rungs)?;
     let stops = PyDict::new(py);
     for l in &ladders {

@@ -25,8 +25,18 @@ def test_work_precision_ladder_of_rk4_shows_fourth_order():
     slope = np.polyfit(np.log(dt[resolved]), np.log(error[resolved]), 1)[0]
     assert 3.7 < slope < 4.3, slope
     assert set(frame["integrator"]) == {"rk4"}
-    # The timing is named as in work-precision.csv.
     assert (frame["wall_time_s"] > 0).all()
+    assert set(frame["order"]) == {"4"} and (frame["repeats"] > 0).all()
+
+
+def test_work_precision_rows_have_the_columns_of_the_command_lines_csv(cli, tmp_path):
+    # One record type writes work-precision.csv and Python's rows: the same columns, in order.
+    cli("work-precision", "free-hoop", "--integrators", "dop853", "--t-end", "1", "--max-seconds", "0.01", "-o", "wp")
+    header = (tmp_path / "wp" / "work-precision.csv").read_text().splitlines()[0].split(",")
+    frame = tumble.work_precision("free-hoop", integrators=["dop853"], t_end=1.0, max_seconds=0.01, frame="dict")
+    assert list(frame) == header
+    assert frame["dt"].dtype == np.float64 and np.isnan(frame["dt"]).all()
+    assert (frame["tol"] > 0).all() and frame["steps"].dtype == np.int64
 
 
 def test_work_precision_refuses_a_method_the_scene_does_not_take():

@@ -52,6 +52,28 @@ def test_simulate_columns_equal_the_command_lines_csv_to_the_last_bit(cli, tmp_p
     assert len(result) == record["rows"]
 
 
+@pytest.mark.parametrize(
+    "scene,keywords,flags", CASES, ids=["free-hoop", "spinning-hoop-dop853", "dumbbell-file-at", "double-pendulum-model"]
+)
+def test_the_simulation_holds_the_record_the_command_line_writes_key_for_key(cli, tmp_path, scene, keywords, flags):
+    cli("simulate", scene, *flags, "-o", "run.csv")
+    written = json.loads((tmp_path / "run.csv.json").read_text())
+    result = tumble.simulate(scene, **keywords)
+    # The same keys in the same order, at every level: one record type writes both.
+    assert list(result.record) == list(written)
+    assert list(result.record["provenance"]) == list(written["provenance"])
+    assert list(result.record["error_estimate"]) == list(written["error_estimate"])
+    # Every value but how and when it was made (the provenance, the wall time, the file).
+    for key, value in written.items():
+        if key in ("provenance", "wall_time_s", "csv"):
+            continue
+        assert result.record[key] == value, key
+        if key != "columns":
+            assert getattr(result, key) == value, key
+    assert result.names == written["columns"]
+    assert result.csv == "" and result.wall_time_s > 0
+
+
 def test_a_model_given_as_text_runs_as_its_file_does_bit_for_bit():
     path = ROOT / "models" / "hoop-two-beads.toml"
     from_file = tumble.simulate(str(path), params={"m2": 0.1}, t_end=1.0)

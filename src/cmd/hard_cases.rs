@@ -334,7 +334,7 @@ fn write_outputs(
         run_seconds: args.run_seconds,
         wall_time_s: report.seconds,
         files: vec!["atlas.csv", "atlas.png", "atlas.svg", atlas::JOURNAL],
-        provenance: Provenance::now(threads),
+        provenance: crate::provenance::now(threads),
     };
     output::write_whole(
         &dir.join("manifest.json"),

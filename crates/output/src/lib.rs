@@ -51,9 +51,11 @@
 
 pub mod abort;
 mod lock;
+mod provenance;
 pub mod table;
 
 pub use lock::{FolderLock, LOCK_FILE, LockError, host_name};
+pub use provenance::Provenance;
 
 use std::fs::{File, OpenOptions};
 use std::io::{self, Write};

@@ -32,11 +32,12 @@
 //!   colour-blind-safe palette for series and the colour maps of heatmaps with a colour bar,
 //!   [`legend`] legends placed where they cover no data, [`labels`] the display symbols of
 //!   parameters and columns.
-//! * **No printing, no command line.** Errors are returned (`anyhow`, with the path or option
-//!   at fault); the option enums derive `clap::ValueEnum` only with the `clap` feature.
+//! * **No printing, no command line.** Errors are returned as [`PlotError`], naming the file or
+//!   option at fault and what was wrong; the option enums derive `clap::ValueEnum` only with the `clap` feature.
 
 pub mod atlas;
 pub mod colour;
+mod error;
 pub mod heatmap;
 pub mod labels;
 pub mod legend;
@@ -55,11 +56,11 @@ pub mod xy;
 use std::path::Path;
 use std::sync::OnceLock;
 
-use anyhow::{Context, Result, anyhow, bail};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::{FontStyle, register_font};
 
+pub use error::{PlotError, Result};
 pub use options::FigureOptions;
 use tumble_output as output;
 
@@ -81,7 +82,9 @@ pub fn register_fonts() -> Result<()> {
     if ok {
         Ok(())
     } else {
-        bail!("the compiled-in font DejaVuSans.ttf could not be parsed")
+        Err(PlotError::Draw(
+            "the compiled-in font DejaVuSans.ttf could not be parsed".to_string(),
+        ))
     }
 }
 
@@ -168,10 +171,10 @@ impl Format {
             Some("png") => Ok(Format::Png),
             Some("svg") => Ok(Format::Svg),
             Some("pdf") => Ok(Format::Pdf),
-            _ => bail!(
-                "{}: plots are written as .png, .svg or .pdf (chosen by the file's extension)",
-                path.display()
-            ),
+            _ => Err(PlotError::choice(
+                path.display().to_string(),
+                "plots are written as .png, .svg or .pdf (chosen by the file's extension)",
+            )),
         }
     }
 }
@@ -205,10 +208,15 @@ pub fn save_to<F: Figure + Clone>(
 ) -> Result<()> {
     let path = dest.path();
     let format = Format::from_path(path)?;
-    let bytes =
-        render(figure, format, opts).with_context(|| format!("cannot draw {}", path.display()))?;
+    let bytes = render(figure, format, opts).map_err(|e| PlotError::Drawing {
+        path: path.to_path_buf(),
+        source: Box::new(e),
+    })?;
     let temp = dest.scratch()?;
-    std::fs::write(&temp, bytes).with_context(|| format!("cannot write {}", temp.display()))?;
+    std::fs::write(&temp, bytes).map_err(|source| PlotError::Write {
+        path: temp.to_path_buf(),
+        source,
+    })?;
     dest.commit_scratch(temp)?;
     Ok(())
 }
@@ -244,7 +252,7 @@ pub fn render<F: Figure + Clone>(
                 figure
                     .draw(&root, layout.scale * f64::from(k))
                     .and_then(|()| root.present())
-                    .map_err(|e| anyhow!("{e}"))?;
+                    .map_err(|e| PlotError::Draw(e.to_string()))?;
             }
             let small = downsample(&rgb, pixels, k);
             encode_png(&small, pixels, layout.dpi)
@@ -261,7 +269,7 @@ pub fn render<F: Figure + Clone>(
                 figure
                     .draw(&root, scale)
                     .and_then(|()| root.present())
-                    .map_err(|e| anyhow!("{e}"))?;
+                    .map_err(|e| PlotError::Draw(e.to_string()))?;
             }
             let extent = if opts.size.is_some() {
                 let (w, h) = layout.inches(size);
@@ -304,9 +312,10 @@ fn encode_png(rgb: &[u8], (w, h): (u32, u32), dpi: f64) -> Result<Vec<u8>> {
             yppu: per_metre,
             unit: png::Unit::Meter,
         }));
-        let mut writer = encoder.write_header()?;
-        writer.write_image_data(rgb)?;
-        writer.finish()?;
+        let encoding = |e: png::EncodingError| PlotError::Draw(format!("PNG encoding: {e}"));
+        let mut writer = encoder.write_header().map_err(encoding)?;
+        writer.write_image_data(rgb).map_err(encoding)?;
+        writer.finish().map_err(encoding)?;
     }
     Ok(out)
 }

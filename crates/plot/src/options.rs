@@ -13,7 +13,7 @@
 //! Without options a figure keeps its own size in pixels (at 96 pixels per inch in SVG and
 //! PDF) and its labels are 11.25 pt.
 
-use anyhow::{Result, bail};
+use crate::{PlotError, Result};
 
 /// The label font of every figure, in layout pixels (axis labels, legends).
 pub const BASE_FONT_PX: f64 = 15.0;
@@ -67,15 +67,19 @@ impl Size {
             (t.strip_suffix("in").unwrap_or(&t), 1.0)
         };
         let Some((w, h)) = number.split_once('x') else {
-            bail!(
-                "--figure-size {s}: expected single (3.4 in), double (7 in) or WxH in inches \
-                 (7x4, or 180x120mm, 12x8cm)"
-            );
+            return Err(PlotError::choice(
+                format!("--figure-size {s}"),
+                "expected single (3.4 in), double (7 in) or WxH in inches (7x4, or 180x120mm, \
+                 12x8cm)",
+            ));
         };
         let dim = |v: &str, what: &str| -> Result<f64> {
             match v.trim().parse::<f64>() {
                 Ok(x) if x.is_finite() && x > 0.0 => Ok(x / per_inch),
-                _ => bail!("--figure-size {s}: the {what} `{v}` is not a positive number"),
+                _ => Err(PlotError::choice(
+                    format!("--figure-size {s}"),
+                    format!("the {what} `{v}` is not a positive number"),
+                )),
             }
         };
         Ok(Size {
@@ -108,11 +112,10 @@ pub const MAX_PIXELS: f64 = 25e6;
 /// A side or an area above the limits, with the size and what to change.
 pub fn check_pixels((w, h): (u32, u32)) -> Result<()> {
     if w > MAX_SIDE_PIXELS || h > MAX_SIDE_PIXELS || f64::from(w) * f64::from(h) > MAX_PIXELS {
-        bail!(
-            "the figure would be {w} x {h} pixels; figures are limited to {MAX_SIDE_PIXELS} \
-             pixels a side and {} megapixels: use a smaller --figure-size or --dpi",
-            MAX_PIXELS / 1e6
-        );
+        return Err(PlotError::TooLarge {
+            width: w,
+            height: h,
+        });
     }
     Ok(())
 }
@@ -181,12 +184,18 @@ impl FigureOptions {
         if let Some(pt) = self.font_pt
             && !(pt.is_finite() && pt > 0.0 && pt <= 200.0)
         {
-            bail!("--font-size {pt}: expected a size in points in (0, 200]");
+            return Err(PlotError::choice(
+                format!("--font-size {pt}"),
+                "expected a size in points in (0, 200]",
+            ));
         }
         if let Some(dpi) = self.dpi
             && !(dpi.is_finite() && (10.0..=4800.0).contains(&dpi))
         {
-            bail!("--dpi {dpi}: expected a resolution between 10 and 4800 dots per inch");
+            return Err(PlotError::choice(
+                format!("--dpi {dpi}"),
+                "expected a resolution between 10 and 4800 dots per inch",
+            ));
         }
         if self.size.is_none() {
             // The figures' own sizes are at most this many layout pixels.
@@ -200,13 +209,15 @@ impl FigureOptions {
             };
             check_pixels(self.layout().pixels((w, h)))?;
             if w < 120 || h < 80 {
-                bail!(
-                    "--figure-size {}x{} in with {} pt text leaves no room for a plot: use a \
-                     larger size or a smaller --font-size",
-                    size.width,
-                    size.height.map_or("auto".into(), |h| h.to_string()),
-                    self.font_pt.unwrap_or(PRESET_FONT_PT)
-                );
+                return Err(PlotError::choice(
+                    format!(
+                        "--figure-size {}x{} in with {} pt text",
+                        size.width,
+                        size.height.map_or("auto".into(), |h| h.to_string()),
+                        self.font_pt.unwrap_or(PRESET_FONT_PT)
+                    ),
+                    "leaves no room for a plot: use a larger size or a smaller --font-size",
+                ));
             }
         }
         Ok(())

@@ -16,12 +16,13 @@
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-use anyhow::{Context, Result, bail};
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use tumble_scenarios::{Params, Scene, StepControl, scenes};
+use tumble_scenarios::{Params, Scene, scenes};
 use tumble_studies::hard_cases::atlas::{Entry, Method};
+use tumble_studies::record::RunRecord;
 use tumble_studies::sweep;
+use tumble_studies::work_precision::record::{RungRecord, StudyRecord};
 
 use crate::atlas::{Atlas, AtlasCase};
 use crate::colour::ColourMap;
@@ -29,7 +30,7 @@ use crate::heatmap::Heatmap;
 use crate::trajectory::RunResult;
 use crate::work_precision::{Curve, LongRecord};
 use crate::xy::{Series, StackedFigure};
-use crate::{DrawResult, Figure};
+use crate::{DrawResult, Figure, PlotError, Result};
 
 /// Which figure of a two-axis sweep to draw.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -133,10 +134,10 @@ impl Figure for AnyFigure {
 /// have.
 pub fn figure(input: &Path, choice: &Choice) -> Result<AnyFigure> {
     if choice.slices == 0 {
-        bail!("slices 0: draw at least one slice");
+        return Err(PlotError::choice("slices 0", "draw at least one slice"));
     }
     if !input.exists() {
-        bail!("{}: no such file or folder", input.display());
+        return Err(PlotError::content(input, "no such file or folder"));
     }
     if !input.is_dir() {
         return Ok(AnyFigure::Stacked(run_figure(input, choice)?));
@@ -150,22 +151,46 @@ pub fn figure(input: &Path, choice: &Choice) -> Result<AnyFigure> {
     } else if input.join("atlas.csv").is_file() {
         Ok(AnyFigure::Atlas(atlas_figure(input)?))
     } else {
-        bail!(
-            "{}: none of a sweep folder (no {}), a work–precision folder (no \
-             work-precision.csv), a long-run folder (no long.csv) or a hard-case atlas (no \
-             atlas.csv)",
-            input.display(),
-            sweep::DEFINITION
-        )
+        Err(PlotError::content(
+            input,
+            format!(
+                "none of a sweep folder (no {}), a work–precision folder (no \
+                 work-precision.csv), a long-run folder (no long.csv) or a hard-case atlas (no \
+                 atlas.csv)",
+                sweep::DEFINITION
+            ),
+        ))
     }
 }
 
 /// Reads a JSON file into a value of type `T`.
 fn read_json<T: serde::de::DeserializeOwned>(path: &Path) -> Result<T> {
-    let text = std::fs::read_to_string(path)
-        .with_context(|| format!("{}: cannot read it", path.display()))?;
-    serde_json::from_str(&text)
-        .with_context(|| format!("{}: not a record tumble wrote", path.display()))
+    let text = std::fs::read_to_string(path).map_err(|source| PlotError::Read {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    serde_json::from_str(&text).map_err(|source| PlotError::Record {
+        path: path.to_path_buf(),
+        source,
+    })
+}
+
+/// A CSV reader of `path`.
+fn csv_reader(path: &Path) -> Result<csv::Reader<std::fs::File>> {
+    csv::Reader::from_path(path).map_err(|source| PlotError::Csv {
+        path: path.to_path_buf(),
+        row: None,
+        source,
+    })
+}
+
+/// [`PlotError::Csv`] of row `i` of the body of `path` (the header is row 1).
+fn row_error(path: &Path, i: usize) -> impl FnOnce(csv::Error) -> PlotError + '_ {
+    move |source| PlotError::Csv {
+        path: path.to_path_buf(),
+        row: Some(i + 2),
+        source,
+    }
 }
 
 /// What a figure needs of a result's record: the scene and its parameters.
@@ -184,44 +209,35 @@ impl SceneRecord {
     /// # Errors
     /// An unknown scene or parameter.
     pub fn scene(&self, path: &Path) -> Result<(&'static dyn Scene, Params)> {
-        let scene =
-            scenes::find(&self.scene).with_context(|| format!("{}: scene", path.display()))?;
-        let mut params = scene.info().default_params();
-        for (name, value) in &self.parameters {
-            params
-                .set(name, *value)
-                .with_context(|| format!("{}: parameter {name}", path.display()))?;
-        }
-        Ok((scene, params))
+        scene_of(&self.scene, &self.parameters, path)
     }
 }
 
-/// What a figure needs of the record `simulate -o FILE.csv` writes beside its CSV.
-#[derive(Debug, Clone, serde::Deserialize)]
-pub struct RunRecordView {
-    /// The scene and its parameters.
-    #[serde(flatten)]
-    pub scene: SceneRecord,
-    /// The integrator's name.
-    pub integrator: String,
-    /// The fixed step, if the run had one.
-    pub dt: Option<f64>,
-    /// The tolerance, if the run was adaptive.
-    pub tol: Option<f64>,
-}
-
-impl RunRecordView {
-    /// The run's step control.
-    ///
-    /// # Errors
-    /// A record with neither `dt` nor `tol`.
-    pub fn step(&self, path: &Path) -> Result<StepControl> {
-        match (self.dt, self.tol) {
-            (Some(h), _) => Ok(StepControl::Fixed(h)),
-            (None, Some(t)) => Ok(StepControl::Tolerance(t)),
-            (None, None) => bail!("{}: neither `dt` nor `tol`", path.display()),
+/// The built-in scene `name` at `parameters` (its defaults for any left out); `path` names the
+/// record in messages.
+///
+/// # Errors
+/// An unknown scene or parameter, or a value outside the parameter's domain.
+pub fn scene_of(
+    name: &str,
+    parameters: &BTreeMap<String, f64>,
+    path: &Path,
+) -> Result<(&'static dyn Scene, Params)> {
+    let scene_error = |what: String| {
+        move |source| PlotError::Scene {
+            path: path.to_path_buf(),
+            what,
+            source: Box::new(source),
         }
+    };
+    let scene = scenes::find(name).map_err(scene_error("scene".to_string()))?;
+    let mut params = scene.info().default_params();
+    for (key, value) in parameters {
+        params
+            .set(key, *value)
+            .map_err(scene_error(format!("parameter {key}")))?;
     }
+    Ok((scene, params))
 }
 
 /// The record `FILE.csv.json` that `simulate -o FILE.csv` writes beside its CSV, read, with
@@ -229,18 +245,20 @@ impl RunRecordView {
 ///
 /// # Errors
 /// No record beside the CSV, or one that is not a run's record.
-pub fn run_record(csv_path: &Path) -> Result<(PathBuf, RunRecordView)> {
+pub fn run_record(csv_path: &Path) -> Result<(PathBuf, RunRecord)> {
     let record_path = tumble_output::table::provenance_path(
         csv_path,
         tumble_output::table::Format::of_path(csv_path),
     );
     if !record_path.is_file() {
-        bail!(
-            "{}: no record {} beside it (simulate -o FILE.csv writes one); a folder of a \
-             sweep or work–precision study is given as the folder",
-            csv_path.display(),
-            record_path.display()
-        );
+        return Err(PlotError::content(
+            csv_path,
+            format!(
+                "no record {} beside it (simulate -o FILE.csv writes one); a folder of a sweep \
+                 or work–precision study is given as the folder",
+                record_path.display()
+            ),
+        ));
     }
     let record = read_json(&record_path)?;
     Ok((record_path, record))
@@ -249,17 +267,22 @@ pub fn run_record(csv_path: &Path) -> Result<(PathBuf, RunRecordView)> {
 /// The figure of a run's CSV and its record.
 fn run_figure(csv_path: &Path, choice: &Choice) -> Result<StackedFigure> {
     let (record_path, record) = run_record(csv_path)?;
-    let (scene, params) = record.scene.scene(&record_path)?;
-    let step = record.step(&record_path)?;
+    let (scene, params) = scene_of(&record.scene, &record.parameters, &record_path)?;
+    let step = record
+        .step()
+        .map_err(|e| PlotError::content(&record_path, e.to_string()))?;
     let (mut columns, mut values) = read_columns(csv_path)?;
     if !choice.columns.is_empty() {
         for c in &choice.columns {
             if !columns.contains(c) {
-                bail!(
-                    "columns {c}: {} has the columns {}",
-                    csv_path.display(),
-                    columns.join(", ")
-                );
+                return Err(PlotError::choice(
+                    format!("columns {c}"),
+                    format!(
+                        "{} has the columns {}",
+                        csv_path.display(),
+                        columns.join(", ")
+                    ),
+                ));
             }
         }
         let keep: Vec<bool> = columns
@@ -273,7 +296,10 @@ fn run_figure(csv_path: &Path, choice: &Choice) -> Result<StackedFigure> {
     }
     if let Some((t0, t1)) = choice.t_range {
         if !(t0 < t1) {
-            bail!("t range {t0},{t1}: expected T0,T1 with T0 < T1 (seconds)");
+            return Err(PlotError::choice(
+                format!("t range {t0},{t1}"),
+                "expected T0,T1 with T0 < T1 (seconds)",
+            ));
         }
         let t = values.first().cloned().unwrap_or_default();
         for column in &mut values {
@@ -285,10 +311,10 @@ fn run_figure(csv_path: &Path, choice: &Choice) -> Result<StackedFigure> {
             });
         }
         if values.first().is_none_or(Vec::is_empty) {
-            bail!(
-                "t range {t0},{t1}: no row of {} lies in it",
-                csv_path.display()
-            );
+            return Err(PlotError::choice(
+                format!("t range {t0},{t1}"),
+                format!("no row of {} lies in it", csv_path.display()),
+            ));
         }
     }
     let run = RunResult::of_scene(
@@ -307,25 +333,35 @@ fn run_figure(csv_path: &Path, choice: &Choice) -> Result<StackedFigure> {
 /// # Errors
 /// An unreadable file, a first column other than `t`, a cell that is not a number.
 pub fn read_columns(path: &Path) -> Result<(Vec<String>, Vec<Vec<f64>>)> {
-    let mut reader = csv::Reader::from_path(path)
-        .with_context(|| format!("{}: cannot read it", path.display()))?;
-    let columns: Vec<String> = reader.headers()?.iter().map(str::to_string).collect();
+    let mut reader = csv_reader(path)?;
+    let columns: Vec<String> = reader
+        .headers()
+        .map_err(|source| PlotError::Csv {
+            path: path.to_path_buf(),
+            row: Some(1),
+            source,
+        })?
+        .iter()
+        .map(str::to_string)
+        .collect();
     if columns.first().map(String::as_str) != Some("t") {
-        bail!(
-            "{}: not a simulate CSV (its first column is not `t`)",
-            path.display()
-        );
+        return Err(PlotError::content(
+            path,
+            "not a simulate CSV (its first column is not `t`)",
+        ));
     }
     let mut values = vec![Vec::new(); columns.len()];
     for (i, record) in reader.records().enumerate() {
-        let record = record.with_context(|| format!("{}: row {}", path.display(), i + 2))?;
+        let record = record.map_err(row_error(path, i))?;
         for (j, cell) in record.iter().enumerate() {
-            let v: f64 = cell.parse().with_context(|| {
-                format!(
-                    "{}: row {}, column {}: `{cell}` is not a number",
-                    path.display(),
-                    i + 2,
-                    columns.get(j).map_or("?", String::as_str)
+            let v: f64 = cell.parse().map_err(|_| {
+                PlotError::content(
+                    path,
+                    format!(
+                        "row {}, column {}: `{cell}` is not a number",
+                        i + 2,
+                        columns.get(j).map_or("?", String::as_str)
+                    ),
                 )
             })?;
             if let Some(column) = values.get_mut(j) {
@@ -345,12 +381,15 @@ fn sweep_figure(dir: &Path, choice: &Choice) -> Result<AnyFigure> {
             .metrics
             .iter()
             .position(|m| m.name() == *name)
-            .with_context(|| {
+            .ok_or_else(|| {
                 let names: Vec<String> = def.metrics.iter().map(|m| m.name()).collect();
-                format!(
-                    "metric {name}: the sweep in {} has the metrics {}",
-                    dir.display(),
-                    names.join(", ")
+                PlotError::choice(
+                    format!("metric {name}"),
+                    format!(
+                        "the sweep in {} has the metrics {}",
+                        dir.display(),
+                        names.join(", ")
+                    ),
                 )
             })?,
     };
@@ -361,70 +400,44 @@ fn sweep_figure(dir: &Path, choice: &Choice) -> Result<AnyFigure> {
         colour_map: choice.colour_map,
     };
     let Some(figures) = crate::sweep::figures(&def, &rows, &drawn) else {
-        bail!(
-            "{}: only sweeps over a grid of one or two axes have figures",
-            dir.display()
-        );
+        return Err(PlotError::content(
+            dir,
+            "only sweeps over a grid of one or two axes have figures",
+        ));
     };
     match (choice.figure, figures.map) {
         (SweepFigure::Map, Some(map)) => Ok(AnyFigure::Map(map)),
-        (SweepFigure::Map, None) if def.axes.len() == 2 => bail!(
-            "{}: the grid's values do not increase along an axis, so it has no map; its \
-             slices can be drawn",
-            dir.display()
-        ),
+        (SweepFigure::Map, None) if def.axes.len() == 2 => Err(PlotError::content(
+            dir,
+            "the grid's values do not increase along an axis, so it has no map; its slices \
+             can be drawn",
+        )),
         _ => Ok(AnyFigure::Stacked(figures.slices)),
     }
-}
-
-/// One row of `work-precision.csv`.
-#[derive(serde::Deserialize)]
-struct RungRow {
-    integrator: String,
-    order: String,
-    evaluations: f64,
-    error: f64,
-    wall_time_s: f64,
-}
-
-/// What the work–precision figure needs of its `manifest.json`.
-#[derive(serde::Deserialize)]
-struct StudyRecord {
-    #[serde(flatten)]
-    scene: SceneRecord,
-    t_end: f64,
-    reference: ReferenceRecord,
-}
-
-/// The reference of a work–precision study, as its manifest records it.
-#[derive(serde::Deserialize)]
-struct ReferenceRecord {
-    method: String,
-    cross_check: String,
-    agreement: f64,
 }
 
 /// The figure of a work–precision folder, from its CSV and manifest.
 fn work_precision_figure(dir: &Path) -> Result<StackedFigure> {
     let manifest_path = dir.join("manifest.json");
     let manifest: StudyRecord = read_json(&manifest_path)?;
-    let (scene, params) = manifest.scene.scene(&manifest_path)?;
+    let (scene, params) = scene_of(&manifest.scene, &manifest.parameters, &manifest_path)?;
     let csv_path = dir.join("work-precision.csv");
-    let mut reader = csv::Reader::from_path(&csv_path)
-        .with_context(|| format!("{}: cannot read it", csv_path.display()))?;
+    let mut reader = csv_reader(&csv_path)?;
     let mut curves: Vec<Curve> = Vec::new();
-    for (i, row) in reader.deserialize::<RungRow>().enumerate() {
-        let row = row.with_context(|| format!("{}: row {}", csv_path.display(), i + 2))?;
+    for (i, row) in reader.deserialize::<RungRecord>().enumerate() {
+        let row = row.map_err(row_error(&csv_path, i))?;
         let order = row.order.as_str();
         if !(matches!(order, "exact" | "variable") || order.parse::<u32>().is_ok()) {
-            bail!(
-                "{}: row {}: order `{order}` (a number, `exact` or `variable`)",
-                csv_path.display(),
-                i + 2
-            );
+            return Err(PlotError::content(
+                &csv_path,
+                format!(
+                    "row {}: order `{order}` (a number, `exact` or `variable`)",
+                    i + 2
+                ),
+            ));
         }
         let label = crate::work_precision::curve_label(&row.integrator, order);
-        let rung = (row.wall_time_s, row.evaluations, row.error);
+        let rung = (row.wall_time_s, row.evaluations as f64, row.error);
         match curves.last_mut() {
             Some(c) if c.label == label => c.rungs.push(rung),
             _ => curves.push(Curve {
@@ -463,11 +476,10 @@ fn long_figure(dir: &Path) -> Result<StackedFigure> {
     let record: LongRecord = read_json(&manifest_path)?;
     let (_, params) = record.scene.scene(&manifest_path)?;
     let csv_path = dir.join("long.csv");
-    let mut reader = csv::Reader::from_path(&csv_path)
-        .with_context(|| format!("{}: cannot read it", csv_path.display()))?;
+    let mut reader = csv_reader(&csv_path)?;
     let mut lines: Vec<(String, Vec<(f64, f64)>)> = Vec::new();
     for (i, row) in reader.deserialize::<LongRow>().enumerate() {
-        let row = row.with_context(|| format!("{}: row {}", csv_path.display(), i + 2))?;
+        let row = row.map_err(row_error(&csv_path, i))?;
         let label = crate::work_precision::long_label(&row.integrator, &row.control);
         let point = (row.t, row.max_energy_rel_err);
         match lines.last_mut() {
@@ -505,8 +517,11 @@ fn atlas_figure(dir: &Path) -> Result<Atlas> {
         .cases
         .iter()
         .map(|c| {
-            scenes::find(&c.scene)
-                .with_context(|| format!("{}: case {}", manifest_path.display(), c.name))
+            scenes::find(&c.scene).map_err(|source| PlotError::Scene {
+                path: manifest_path.clone(),
+                what: format!("case {}", c.name),
+                source: Box::new(source),
+            })
         })
         .collect::<Result<_>>()?;
     let cases: Vec<AtlasCase> = record
@@ -522,15 +537,133 @@ fn atlas_figure(dir: &Path) -> Result<Atlas> {
     let methods: Vec<Method> = record
         .methods
         .iter()
-        .map(|m| Method::parse(m).map_err(|e| anyhow::anyhow!("{}: {e}", manifest_path.display())))
+        .map(|m| Method::parse(m).map_err(|e| PlotError::content(&manifest_path, e)))
         .collect::<Result<_>>()?;
     let csv_path = dir.join("atlas.csv");
-    let mut reader = csv::Reader::from_path(&csv_path)
-        .with_context(|| format!("{}: cannot read it", csv_path.display()))?;
+    let mut reader = csv_reader(&csv_path)?;
     let entries: Vec<Entry> = reader
         .deserialize()
         .enumerate()
-        .map(|(i, e)| e.with_context(|| format!("{}: row {}", csv_path.display(), i + 2)))
+        .map(|(i, e)| e.map_err(row_error(&csv_path, i)))
         .collect::<Result<_>>()?;
     Ok(Atlas::of_entries(&cases, &methods, &entries))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use tumble_integrators::Flow;
+    use tumble_output::Provenance;
+    use tumble_scenarios::{Recorder, RunOptions, StepControl};
+    use tumble_studies::record::{Estimated, RunSetup};
+    use tumble_studies::simulation::DEFAULT_ENERGY_WARN;
+
+    /// Every row of a run.
+    struct Rows(Vec<Vec<f64>>);
+
+    impl Recorder for Rows {
+        fn row(&mut self, values: &[f64]) -> Flow {
+            self.0.push(values.to_vec());
+            Flow::Continue
+        }
+    }
+
+    /// A short run of the free hoop written as `simulate -o DIR/run.csv` writes it; its record.
+    fn write_run(dir: &Path) -> RunRecord {
+        let scene = scenes::find("free-hoop").unwrap();
+        let info = scene.info();
+        let params = info.default_params();
+        let plan = RunOptions {
+            step: Some(StepControl::Fixed(0.05)),
+            t_end: Some(1.0),
+            ..RunOptions::default()
+        }
+        .resolve(info)
+        .unwrap();
+        let mut rows = Rows(Vec::new());
+        let summary = scene.simulate(&params, &plan, &mut rows).unwrap();
+        let csv_path = dir.join("run.csv");
+        let record = RunRecord::new(
+            Provenance::now("0.0.0", "unknown", 1),
+            &RunSetup {
+                info,
+                origin: "builtin",
+                frame: None,
+                params: &params,
+                plan: &plan,
+            },
+            &summary,
+            &Estimated::Off,
+            DEFAULT_ENERGY_WARN,
+            csv_path.display().to_string(),
+            0.5,
+        );
+        let mut w = csv::Writer::from_path(&csv_path).unwrap();
+        w.write_record(info.columns()).unwrap();
+        for row in &rows.0 {
+            w.serialize(row).unwrap();
+        }
+        w.flush().unwrap();
+        let text = serde_json::to_string_pretty(&record).unwrap() + "\n";
+        std::fs::write(dir.join("run.csv.json"), text).unwrap();
+        record
+    }
+
+    #[test]
+    fn a_runs_record_reads_back_equal_to_the_one_written_and_draws() {
+        let dir = tempfile::tempdir().unwrap();
+        let written = write_run(dir.path());
+        let csv_path = dir.path().join("run.csv");
+        let (path, read) = run_record(&csv_path).unwrap();
+        assert_eq!(path, dir.path().join("run.csv.json"));
+        assert_eq!(read, written);
+        let AnyFigure::Stacked(_) = figure(&csv_path, &Choice::default()).unwrap() else {
+            panic!("a run's figure is stacked panels");
+        };
+    }
+
+    #[test]
+    fn a_damaged_record_is_refused_naming_the_file_and_the_field() {
+        let dir = tempfile::tempdir().unwrap();
+        write_run(dir.path());
+        let csv_path = dir.path().join("run.csv");
+        let record_path = dir.path().join("run.csv.json");
+        let text = std::fs::read_to_string(&record_path).unwrap();
+        std::fs::write(&record_path, text.replace("\"integrator\"", "\"method\"")).unwrap();
+        let e = run_record(&csv_path).unwrap_err();
+        let PlotError::Record { path, source } = &e else {
+            panic!("{e:?}");
+        };
+        assert_eq!(path, &record_path);
+        assert!(
+            source.to_string().contains("missing field `integrator`"),
+            "{source}"
+        );
+        std::fs::remove_file(&record_path).unwrap();
+        let e = figure(&csv_path, &Choice::default()).unwrap_err();
+        assert!(
+            matches!(&e, PlotError::Content { path, .. } if *path == csv_path),
+            "{e:?}"
+        );
+        assert!(e.to_string().contains("no record"), "{e}");
+    }
+
+    #[test]
+    fn a_column_the_run_does_not_have_is_refused_with_the_columns_it_has() {
+        let dir = tempfile::tempdir().unwrap();
+        write_run(dir.path());
+        let choice = Choice {
+            columns: vec!["omega_z".to_string()],
+            ..Choice::default()
+        };
+        let e = figure(&dir.path().join("run.csv"), &choice).unwrap_err();
+        let PlotError::Choice { given, expected } = &e else {
+            panic!("{e:?}");
+        };
+        assert_eq!(given, "columns omega_z");
+        assert!(
+            expected.contains("has the columns t,") || expected.contains("has the columns t, "),
+            "{expected}"
+        );
+    }
 }

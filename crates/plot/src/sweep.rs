@@ -3,7 +3,7 @@
 
 use std::path::Path;
 
-use anyhow::Result;
+use crate::Result;
 use tumble_scenarios::{Guide, StepControl};
 use tumble_studies::sweep::{Metric, PointRow, Sampling, Status, SweepDefinition};
 

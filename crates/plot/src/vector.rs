@@ -15,7 +15,7 @@
 
 use std::sync::{Arc, OnceLock};
 
-use anyhow::{Context, Result, anyhow};
+use crate::{PlotError, Result};
 use base64::Engine as _;
 
 use super::options::{CSS_DPI, SvgText};
@@ -48,7 +48,9 @@ pub fn document(svg: &str, device: (u32, u32), extent: &Extent) -> Result<String
         extent.width, extent.height
     );
     if !svg.contains(&old) {
-        return Err(anyhow!("unexpected SVG root element from the plot backend"));
+        return Err(PlotError::Draw(
+            "unexpected SVG root element from the plot backend".to_string(),
+        ));
     }
     Ok(svg.replacen(&old, &new, 1).replace(
         &format!(r#"font-family="{FONT}""#),
@@ -114,7 +116,7 @@ pub fn pdf(doc: &str) -> Result<Vec<u8>> {
             dpi: CSS_DPI as f32,
         },
     )
-    .map_err(|e| anyhow!("PDF conversion failed: {e}"))
+    .map_err(|e| PlotError::Draw(format!("PDF conversion failed: {e}")))
 }
 
 /// usvg's options with the shipped font as the only font (and the `sans-serif` family).
@@ -138,5 +140,6 @@ fn usvg_options() -> &'static usvg::Options<'static> {
 /// # Errors
 /// usvg's parse error.
 pub fn parse(doc: &str) -> Result<usvg::Tree> {
-    usvg::Tree::from_str(doc, usvg_options()).context("the SVG cannot be read back")
+    usvg::Tree::from_str(doc, usvg_options())
+        .map_err(|e| PlotError::Draw(format!("the SVG cannot be read back: {e}")))
 }

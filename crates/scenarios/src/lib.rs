@@ -72,6 +72,6 @@ pub use params::{Domain, ParamSpec, Params};
 pub use recommendation::Measure;
 pub use resolution::StepResolution;
 pub use scene::{
-    DenseRows, Guide, Observe, Recommendation, Recorder, RunOptions, RunPlan, RunSummary, Scene,
-    SceneInfo, StepControl,
+    DenseRows, DtAndTol, Guide, Observe, Recommendation, Recorder, RunOptions, RunPlan, RunSummary,
+    Scene, SceneInfo, StepControl,
 };

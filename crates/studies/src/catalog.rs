@@ -11,7 +11,7 @@ use tumble_scenarios::recommendation::{
     Band, LongRuns, Provenance, SceneMeasurements, measurements,
 };
 use tumble_scenarios::scenes::builtin;
-use tumble_scenarios::{Recommendation, RunOptions, Scene, SceneError, StepControl};
+use tumble_scenarios::{Recommendation, RunOptions, Scene, SceneError};
 
 /// A registry entry with the built-in scenes it runs (`tumble integrators --json`,
 /// `tumble.integrators()`).
@@ -158,10 +158,7 @@ pub fn entry(scene: &dyn Scene) -> Result<Entry, SceneError> {
     let info = scene.info();
     let resolved = RunOptions::default().resolve(info)?;
     let (recommended, measured) = recommended(scene);
-    let (default_dt, default_tol) = match resolved.step {
-        StepControl::Fixed(h) => (Some(h), None),
-        StepControl::Tolerance(tol) => (None, Some(tol)),
-    };
+    let (default_dt, default_tol) = resolved.step.dt_tol();
     Ok(Entry {
         name: info.name,
         summary: info.summary,

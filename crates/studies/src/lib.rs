@@ -68,6 +68,7 @@ pub mod catalog;
 pub mod error_estimate;
 pub mod hard_cases;
 pub mod models;
+pub mod record;
 pub mod simulation;
 pub mod sweep;
 pub mod work_precision;

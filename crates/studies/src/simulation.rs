@@ -195,6 +195,10 @@ pub struct RunRequest {
 /// `max_steps`): a guard against a step size that would never reach the horizon.
 pub const DEFAULT_MAX_STEPS: u64 = 1_000_000_000;
 
+/// A run's largest relative energy error above which its record sets `energy_warning`
+/// (`simulate --energy-warn`): the step does not resolve the motion.
+pub const DEFAULT_ENERGY_WARN: f64 = 1e-6;
+
 /// The frame of a run's orientation and angular-velocity columns when its scene file names
 /// none: the words a run's record (`FILE.csv.json`, Python's `Simulation.frame`) gives.
 pub const BODY_FRAME: &str = "the scene's body frame (docs/design.md, section 3)";

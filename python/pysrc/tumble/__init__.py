@@ -64,47 +64,61 @@ class Simulation:
     ``result["t"]`` (or ``result.columns["t"]``) is a NumPy array of the column ``t``;
     ``result.names`` lists the columns in order (``t``, the coordinates, the rates, the
     diagnostics); ``coordinates`` and ``rates`` are the scene's coordinate and rate columns.
-    The run's record is in attributes: ``scene``, ``origin``, ``frame``,
-    ``parameters``, ``integrator``, ``dt`` or ``tol``, ``t_end``, ``every``, ``at``, ``steps``,
-    ``evaluations``, ``reached_t``, ``max_energy_rel_err`` (the largest relative energy error
-    over every step), ``error_estimate``, ``version``.
 
-    ``error_estimate`` (``None`` with ``check=False``) is a dict: ``final``, the estimated
-    error of the final state, and ``max``, the largest over the compared rows (at ``max_t``),
-    in the work–precision norm (``max |Δᵢ| / (1 + |yᵢ|)`` over the coordinates and rates);
-    ``trust`` (``'trustworthy'``, ``'round-off'``, ``'not-trustworthy'`` or ``'unchecked'``)
-    and ``trust_reason``; the ``companion`` and ``check`` settings that measured it. A
-    companion that failed gives ``status='failed'`` and its ``reason``.
+    ``record`` is the run's record, the dict ``tumble simulate -o FILE.csv`` writes as
+    ``FILE.csv.json`` (the same type, the same keys; ``csv`` is empty and ``provenance`` is
+    this process's). Each of its keys is also an attribute: ``scene``, ``origin``, ``frame``,
+    ``parameters``, ``integrator``, ``dt`` or ``tol``, ``t_end``, ``every``, ``at``, ``rows``,
+    ``steps``, ``evaluations``, ``reached_t``, ``max_energy_rel_err`` (the largest relative
+    energy error over every step), ``energy_warning``, ``error_estimate``, ``wall_time_s``,
+    ``provenance`` — except ``columns``, whose names are ``names`` here. ``version`` is
+    ``provenance["tumble_version"]``.
+
+    ``error_estimate`` is a dict: ``status`` (``'estimated'``, ``'off'`` with
+    ``check=False``, or ``'failed'`` with the ``reason``); when estimated, ``final``, the
+    estimated error of the final state, and ``max``, the largest over the compared rows (at
+    ``max_t``), in the work–precision norm (``max |Δᵢ| / (1 + |yᵢ|)`` over the coordinates and
+    rates); ``trust`` (``'trustworthy'``, ``'round-off'``, ``'within-tolerance'``,
+    ``'not-trustworthy'`` or ``'unchecked'``) and ``trust_reason``; the ``companion`` and
+    ``check`` settings that measured it and their cost.
     """
 
+    scene: str
+    origin: str
+    frame: str
+    parameters: Dict[str, float]
+    integrator: str
+    dt: Optional[float]
+    tol: Optional[float]
+    t_end: float
+    every: int
+    at: Optional[List[float]]
+    rows: int
+    steps: int
+    evaluations: int
+    reached_t: float
+    max_energy_rel_err: float
+    energy_warning: bool
+    error_estimate: Dict[str, Any]
+    wall_time_s: float
+    provenance: Dict[str, Any]
+
     def __init__(self, raw: Dict[str, Any]) -> None:
-        names: List[str] = list(raw.pop("columns"))
-        rows: int = raw["rows"]
-        self._data: bytes = raw.pop("data")
+        self.record: Dict[str, Any] = json.loads(raw["record"])
+        for key, value in self.record.items():
+            if key != "columns":
+                setattr(self, key, value)
+        names: List[str] = list(self.record["columns"])
+        rows: int = self.record["rows"]
+        self._data: bytes = raw["data"]
         data = _f64(self._data)
         self.names: List[str] = names
         self.columns: Dict[str, np.ndarray] = {
             name: data[k * rows : (k + 1) * rows] for k, name in enumerate(names)
         }
-        self.rows: int = rows
-        self.scene: str = raw["scene"]
         self.coordinates: List[str] = list(raw["coordinates"])
         self.rates: List[str] = list(raw["rates"])
-        self.origin: str = raw["origin"]
-        self.frame: str = raw["frame"]
-        self.parameters: Dict[str, float] = raw["parameters"]
-        self.integrator: str = raw["integrator"]
-        self.dt: Optional[float] = raw["dt"]
-        self.tol: Optional[float] = raw["tol"]
-        self.t_end: float = raw["t_end"]
-        self.every: int = raw["every"]
-        self.at: Optional[List[float]] = raw["at"]
-        self.steps: int = raw["steps"]
-        self.evaluations: int = raw["evaluations"]
-        self.reached_t: float = raw["reached_t"]
-        self.max_energy_rel_err: float = raw["max_energy_rel_err"]
-        self.error_estimate: Optional[Dict[str, Any]] = raw["error_estimate"]
-        self.version: str = raw["version"]
+        self.version: str = self.record["provenance"]["tumble_version"]
 
     def __getitem__(self, name: str) -> np.ndarray:
         try:
@@ -510,11 +524,12 @@ def work_precision(
     steps or tolerances until a run takes ``max_seconds`` (default: the command line's
     ``--max-seconds``, 0.5 s) or the error reaches round-off.
 
-    Returns one row per run (``integrator``, ``dt`` or ``tol``, ``steps``, ``evaluations``,
-    ``error``, ``max_energy_rel_err``, ``wall_time_s``: named as the columns of
-    ``work-precision.csv``) as a DataFrame (``frame`` as for
-    :func:`sweep`); ``attrs`` (pandas) hold the reference and why each ladder stopped. Times
-    depend on the machine and its load.
+    Returns one row per run, with the columns of ``work-precision.csv`` (the same record
+    type): ``integrator``, ``order`` (a number, ``'exact'`` or ``'variable'``), ``dt`` or
+    ``tol`` (NaN for the other), ``steps``, ``evaluations``, ``error``, ``max_energy_rel_err``,
+    ``wall_time_s``, ``repeats`` (timed runs), as a DataFrame (``frame`` as for :func:`sweep`);
+    ``attrs`` (pandas) hold the reference and why each ladder stopped. Times depend on the
+    machine and its load.
     """
     raw = _tumble.work_precision(
         os.fspath(scene),
@@ -523,14 +538,13 @@ def work_precision(
         t_end=t_end,
         **({} if max_seconds is None else {"max_seconds": max_seconds}),
     )
-    rungs = raw.pop("rungs")
-    keys = ["integrator", "dt", "tol", "steps", "evaluations", "error", "max_energy_rel_err", "wall_time_s"]
+    rungs: List[Dict[str, Any]] = json.loads(raw.pop("rungs"))
     columns: Dict[str, np.ndarray] = {}
-    for key in keys:
+    for key in raw.pop("columns"):
         values = [r[key] for r in rungs]
-        if key == "integrator":
+        if any(isinstance(v, str) for v in values):
             columns[key] = np.array(values, dtype=object)
-        elif key in ("steps", "evaluations"):
+        elif all(isinstance(v, int) for v in values):
             columns[key] = np.array(values, dtype=np.int64)
         else:
             columns[key] = np.array([np.nan if v is None else v for v in values], dtype=np.float64)

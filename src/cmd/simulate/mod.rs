@@ -26,11 +26,10 @@ use tumble_studies::error_estimate::{self, Tap, Trust, WrittenRows};
 use tumble_studies::simulation::{self, Naming, ParamOverride, RunRequest, failure_message};
 pub(crate) use tumble_studies::simulation::{LoadedScene, number};
 
-mod record;
 mod rows;
 
-use record::{Estimated, SimulationRecord};
 use rows::CsvRecorder;
+use tumble_studies::record::{Estimated, RunRecord, RunSetup};
 
 use super::args::{parse_set, refuse_repeated_keys};
 use crate::manifest;
@@ -92,7 +91,7 @@ pub struct Args {
     #[arg(
         long = "energy-warn",
         value_name = "REL",
-        default_value_t = 1e-6,
+        default_value_t = simulation::DEFAULT_ENERGY_WARN,
         allow_negative_numbers = true
     )]
     pub energy_warn: f64,
@@ -194,11 +193,8 @@ fn setup(args: &Args) -> Result<Setup> {
     let at = args.at.as_deref().map(parse_times).transpose()?;
     let request = RunRequest {
         integrator: args.integrator.clone(),
-        step: match (args.dt, args.tol) {
-            (Some(h), _) => Some(StepControl::Fixed(h)),
-            (None, Some(tol)) => Some(StepControl::Tolerance(tol)),
-            (None, None) => None,
-        },
+        // clap refuses --dt with --tol.
+        step: StepControl::from_dt_tol(args.dt, args.tol)?,
         t_end: args.t_end,
         every: args.every,
         at,
@@ -572,13 +568,22 @@ pub fn run(args: &Args) -> Result<()> {
         }
         (_, kept) => kept,
     };
-    let record = manifest::to_text(&SimulationRecord::new(
-        &setup,
+    let record = manifest::to_text(&RunRecord::new(
+        crate::provenance::now(1),
+        &RunSetup {
+            info,
+            origin: &setup.origin,
+            frame: setup.frame.as_deref(),
+            params: &setup.params,
+            plan: &setup.plan,
+        },
         &summary,
-        elapsed.as_secs_f64(),
-        args.output.as_deref(),
-        args.energy_warn,
         &estimated,
+        args.energy_warn,
+        args.output
+            .as_deref()
+            .map_or_else(String::new, |p| p.display().to_string()),
+        elapsed.as_secs_f64(),
     ))?;
     let trajectory = if parquet {
         let columns = info.columns().into_iter().zip(kept.unwrap_or_default());

@@ -20,7 +20,7 @@ use tumble_studies::work_precision::{
 };
 
 use super::simulate::{LoadedScene, SceneArgs, load_scene, number};
-use crate::manifest::{self, WorkPrecisionManifest};
+use crate::manifest;
 use crate::output;
 use crate::provenance::Provenance;
 use crate::signals;
@@ -29,6 +29,7 @@ use tumble_plot::saved::SceneRecord;
 use tumble_plot::work_precision::{Curve, LongRecord, long_label};
 use tumble_plot::xy::Series;
 use tumble_studies::simulation::{Naming, flag_words};
+use tumble_studies::work_precision::record::{RungRecord, StudyRecord};
 
 /// Flags of `tumble work-precision`.
 #[derive(clap::Args, Debug)]
@@ -91,7 +92,7 @@ pub struct Args {
 }
 
 /// Each run of the reference is limited to this multiple of `--max-seconds`.
-const REFERENCE_FACTOR: f64 = 60.0;
+const REFERENCE_FACTOR: f64 = Config::REFERENCE_FACTOR;
 
 /// Each run of `--long` is limited to this multiple of `--max-seconds`.
 const LONG_FACTOR: f64 = 600.0;
@@ -194,7 +195,7 @@ pub fn run(args: &Args) -> Result<()> {
 
     output::write_whole(
         &dir.join("work-precision.csv"),
-        csv_text(&ladders)?.as_bytes(),
+        RungRecord::csv_text(&RungRecord::of(&ladders))?.as_bytes(),
     )?;
     let curves: Vec<Curve> = ladders
         .iter()
@@ -205,7 +206,7 @@ pub fn run(args: &Args) -> Result<()> {
             rungs: l
                 .rungs
                 .iter()
-                .map(|r| (r.seconds, r.evaluations as f64, r.error))
+                .map(|r| (r.wall_time_s, r.evaluations as f64, r.error))
                 .collect(),
         })
         .collect();
@@ -223,11 +224,11 @@ pub fn run(args: &Args) -> Result<()> {
             &figure_options,
         )?;
     }
-    let text = manifest::to_text(&WorkPrecisionManifest::new(
+    let text = manifest::to_text(&StudyRecord::new(
+        crate::provenance::now(1),
         info.name,
         &origin,
         &params,
-        t_end,
         &config,
         &reference,
         &ladders,
@@ -312,7 +313,7 @@ pub(super) fn print_rung(name: &str, r: &work_precision::Rung) {
         control_words(r.control),
         r.error,
         r.evaluations,
-        seconds(r.seconds)
+        seconds(r.wall_time_s)
     );
 }
 
@@ -352,44 +353,6 @@ pub(crate) fn seconds(s: f64) -> String {
     }
 }
 
-/// The CSV: one row per rung.
-fn csv_text(ladders: &[Ladder]) -> Result<String> {
-    let mut w = csv::Writer::from_writer(Vec::new());
-    w.write_record([
-        "integrator",
-        "order",
-        "dt",
-        "tol",
-        "steps",
-        "evaluations",
-        "error",
-        "max_energy_rel_err",
-        "wall_time_s",
-        "repeats",
-    ])?;
-    for l in ladders {
-        for r in &l.rungs {
-            let (dt, tol) = match r.control {
-                StepControl::Fixed(h) => (h.to_string(), String::new()),
-                StepControl::Tolerance(t) => (String::new(), t.to_string()),
-            };
-            w.write_record([
-                l.integrator.clone(),
-                l.order.to_string(),
-                dt,
-                tol,
-                r.steps.to_string(),
-                r.evaluations.to_string(),
-                r.error.to_string(),
-                r.max_energy_rel_err.to_string(),
-                r.seconds.to_string(),
-                r.repeats.to_string(),
-            ])?;
-        }
-    }
-    Ok(String::from_utf8(w.into_inner()?)?)
-}
-
 /// Per integrator: rungs, the observed order (minus the fitted slope of error against steps
 /// over errors in [1e-11, 1e-3]; meaningless for adaptive methods), the best error, the
 /// interpolated cost of reaching 1e-8, and the interpolated time to 1e-12.
@@ -415,9 +378,9 @@ fn summary(ladders: &[Ladder], t_end: f64) -> String {
             .iter()
             .map(|r| r.error)
             .fold(f64::INFINITY, f64::min);
-        let time = cost_at(&l.rungs, 1e-8, |r| r.seconds);
+        let time = cost_at(&l.rungs, 1e-8, |r| r.wall_time_s);
         let evals = cost_at(&l.rungs, 1e-8, |r| r.evaluations as f64);
-        let time_fine = cost_at(&l.rungs, 1e-12, |r| r.seconds);
+        let time_fine = cost_at(&l.rungs, 1e-12, |r| r.wall_time_s);
         if let Some(t) = time {
             at_target.push((t, &l.integrator));
         }
@@ -644,7 +607,7 @@ fn long(
             command: "work-precision --long",
             origin,
             record: &record,
-            provenance: Provenance::now(1),
+            provenance: crate::provenance::now(1),
         })?
         .as_bytes(),
     )?;

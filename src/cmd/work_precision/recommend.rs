@@ -122,7 +122,7 @@ pub(super) fn run(
 /// This invocation: the command as typed after the program's path, version and commit, date,
 /// CPU, cores and the load average at the start.
 fn provenance() -> Provenance {
-    let record = crate::provenance::Provenance::now(1);
+    let record = crate::provenance::now(1);
     let command = std::iter::once("tumble".to_string())
         .chain(std::env::args().skip(1))
         .collect::<Vec<_>>()

@@ -41,7 +41,7 @@ mod stepping;
 
 use std::sync::LazyLock;
 
-use serde::{Serialize, Serializer};
+use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
 pub use stepping::{
     AnyExplicit, AnyGauss, Base, BaseStepper, ExplicitVisitor, GAUSS2_BASE, GaussVisitor,
@@ -182,6 +182,30 @@ impl Serialize for Order {
             Order::Finite(p) => serializer.serialize_u32(*p),
             Order::Exact => serializer.serialize_none(),
             Order::Variable => serializer.serialize_str("variable"),
+        }
+    }
+}
+
+/// The inverse of the [`Serialize`] form: a number, `null` (or `"exact"`) for the exact flow,
+/// `"variable"`.
+impl<'de> Deserialize<'de> for Order {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        #[derive(Deserialize)]
+        #[serde(untagged)]
+        enum Written {
+            Finite(u32),
+            Word(String),
+        }
+        match Option::<Written>::deserialize(deserializer)? {
+            Some(Written::Finite(p)) => Ok(Order::Finite(p)),
+            None => Ok(Order::Exact),
+            Some(Written::Word(w)) => match w.as_str() {
+                "exact" => Ok(Order::Exact),
+                "variable" => Ok(Order::Variable),
+                _ => Err(serde::de::Error::custom(format!(
+                    "order `{w}`: expected a number, null (the exact flow) or \"variable\""
+                ))),
+            },
         }
     }
 }

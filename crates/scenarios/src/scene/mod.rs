@@ -20,7 +20,8 @@ mod plan;
 mod rows;
 
 pub use plan::{
-    CancelFlag, DEFAULT_TOLERANCE, Observe, RunOptions, RunPlan, StepControl, check_horizon,
+    CancelFlag, DEFAULT_TOLERANCE, DtAndTol, Observe, RunOptions, RunPlan, StepControl,
+    check_horizon,
 };
 pub(crate) use rows::RowObserver;
 pub use rows::{

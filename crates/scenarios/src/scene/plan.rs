@@ -22,6 +22,37 @@ pub enum StepControl {
     Tolerance(f64),
 }
 
+impl StepControl {
+    /// `(dt, tol)` as records, manifests and keyword arguments name them: the fixed step or the
+    /// tolerance, the other `None`.
+    #[must_use]
+    pub const fn dt_tol(self) -> (Option<f64>, Option<f64>) {
+        match self {
+            StepControl::Fixed(h) => (Some(h), None),
+            StepControl::Tolerance(t) => (None, Some(t)),
+        }
+    }
+
+    /// The step control of `dt` (a fixed step) or `tol` (a tolerance), the inverse of
+    /// [`StepControl::dt_tol`]: `None` when neither is given.
+    ///
+    /// # Errors
+    /// [`DtAndTol`] when both are given.
+    pub const fn from_dt_tol(dt: Option<f64>, tol: Option<f64>) -> Result<Option<Self>, DtAndTol> {
+        match (dt, tol) {
+            (Some(_), Some(_)) => Err(DtAndTol),
+            (Some(h), None) => Ok(Some(StepControl::Fixed(h))),
+            (None, Some(t)) => Ok(Some(StepControl::Tolerance(t))),
+            (None, None) => Ok(None),
+        }
+    }
+}
+
+/// Both a fixed step and a tolerance were given where one of them is expected.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
+#[error("dt and tol: give one (a fixed step, or a tolerance for an adaptive integrator)")]
+pub struct DtAndTol;
+
 /// Which states a run observes: computes a row of (coordinates, rates, diagnostics) for.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Observe {

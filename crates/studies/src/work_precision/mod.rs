@@ -40,6 +40,7 @@
 
 mod long;
 mod recommend;
+pub mod record;
 
 use std::time::Instant;
 
@@ -196,6 +197,10 @@ impl Config {
     /// Python's `max_seconds`).
     pub const DEFAULT_MAX_RUN_SECONDS: f64 = 0.5;
 
+    /// Each run of the reference is limited to this multiple of [`Config::max_run_seconds`]
+    /// ([`Config::max_reference_seconds`] unless told otherwise).
+    pub const REFERENCE_FACTOR: f64 = 60.0;
+
     /// A ladder's run is cut at this multiple of [`Config::max_run_seconds`].
     pub const CUT_FACTOR: f64 = 2.0;
 
@@ -205,7 +210,7 @@ impl Config {
         Config {
             t_end: info.default_t_end,
             max_run_seconds: Config::DEFAULT_MAX_RUN_SECONDS,
-            max_reference_seconds: 30.0,
+            max_reference_seconds: Config::REFERENCE_FACTOR * Config::DEFAULT_MAX_RUN_SECONDS,
             max_steps: u64::MAX,
             error_floor: 1e-14,
             max_error: 1e-1,
@@ -230,7 +235,7 @@ pub struct Rung {
     pub max_energy_rel_err: f64,
     /// Wall time (s) of one run observing only the ends: the median over samples of the mean
     /// of back-to-back runs (each sample at least 5 ms).
-    pub seconds: f64,
+    pub wall_time_s: f64,
     /// Timed runs in all.
     pub repeats: usize,
 }
@@ -525,7 +530,7 @@ pub fn rung(
         evaluations: summary.evaluations,
         error: state_error(info, &state, reference),
         max_energy_rel_err: summary.max_energy_rel_err,
-        seconds: median(&mut times),
+        wall_time_s: median(&mut times),
         repeats,
     })
 }
@@ -662,7 +667,7 @@ pub fn ladder(
             out.stop = "a run failed".into();
             break;
         };
-        let (error, seconds, steps) = (r.error, r.seconds, r.steps);
+        let (error, seconds, steps) = (r.error, r.wall_time_s, r.steps);
         if error <= config.max_error {
             progress(&r);
             out.rungs.push(r);
@@ -741,7 +746,7 @@ pub fn retime(
                 ladder: l,
                 rung: r,
                 plan: base.with_step(rung.control)?.observing(Observe::Ends),
-                batch: batch_for(rung.seconds),
+                batch: batch_for(rung.wall_time_s),
                 times: Vec::with_capacity(rounds),
             });
         }
@@ -758,7 +763,7 @@ pub fn retime(
     }
     for mut job in jobs {
         let rung = &mut ladders[job.ladder].rungs[job.rung];
-        rung.seconds = median(&mut job.times);
+        rung.wall_time_s = median(&mut job.times);
         rung.repeats += rounds * job.batch;
     }
     Ok(())

@@ -84,7 +84,7 @@ pub fn measure_recommendations(
                     .filter_map(|name| ladders.iter().find(|l| l.integrator == name))
                     .map(|l| TimeToError {
                         integrator: l.integrator.clone(),
-                        seconds: cost_at(&l.rungs, target, |r| r.seconds),
+                        seconds: cost_at(&l.rungs, target, |r| r.wall_time_s),
                         evaluations: cost_at(&l.rungs, target, |r| r.evaluations as f64),
                         best_error: l
                             .rungs

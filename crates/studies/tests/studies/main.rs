@@ -8,6 +8,7 @@ mod hard_cases;
 mod max_tilt_reference;
 mod method_agreement;
 mod recommendations;
+mod records;
 mod reduced_model;
 mod refinement;
 mod results_table;

@@ -99,7 +99,7 @@ fn retimed_rungs_keep_their_runs_and_count_the_interleaved_repeats() {
                 (b.control, b.steps, b.evaluations)
             );
             assert_eq!(a.error.to_bits(), b.error.to_bits());
-            assert!(b.seconds.is_finite() && b.seconds > 0.0, "{b:?}");
+            assert!(b.wall_time_s.is_finite() && b.wall_time_s > 0.0, "{b:?}");
             assert!(b.repeats >= a.repeats + 3, "{a:?} -> {b:?}");
         }
     }
@@ -128,7 +128,7 @@ fn every_scene_runs_with_every_applicable_integrator() {
             assert!(!ladder.rungs.is_empty(), "{name}: no rung ({ladder:?})");
             assert!(
                 ladder.rungs.iter().all(|r| r.error.is_finite()
-                    && r.seconds > 0.0
+                    && r.wall_time_s > 0.0
                     && r.evaluations > 0
                     && r.max_energy_rel_err.is_finite()),
                 "{name}: {ladder:?}"
