@@ -183,7 +183,7 @@ fn work_precision_rows_read_back_from_their_csv_equal_to_those_written() {
     assert_eq!(
         text.lines().nth(2).unwrap(),
         "dop853,8,,0.0000000001,4096,16385,0.0000000000000048,0.00000000000031,\
-         0.000012345678901234567,7"
+         0.000012345678901234568,7"
     );
     let mut reader = csv::Reader::from_reader(text.as_bytes());
     let back: Vec<RungRecord> = reader.deserialize().collect::<Result<_, _>>().unwrap();
