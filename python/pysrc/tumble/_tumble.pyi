@@ -22,8 +22,10 @@ def simulate(
     allow_coarse_step: bool = False,
     check: bool = True,
 ) -> Dict[str, Any]:
-    """The run's record, ``columns`` (names) and ``data``: the columns one after the other,
-    native-endian float64 bytes, ``rows`` values each."""
+    """``record``: the run's record as JSON text (the ``FILE.csv.json`` of ``tumble simulate``,
+    its ``columns`` and ``rows`` included); ``data``: the columns one after the other,
+    native-endian float64 bytes, ``rows`` values each; the scene's ``coordinates`` and
+    ``rates``."""
 
 def plot(
     input: str,
@@ -71,7 +73,9 @@ def work_precision(
     t_end: Optional[float] = None,
     max_seconds: float = ...,
 ) -> Dict[str, Any]:
-    """The reference, ``rungs`` (a dict per run) and ``stopped`` (why each ladder stopped)."""
+    """The reference; ``rungs``, JSON text of a list of rows (a dict per run, keyed as the
+    columns of ``work-precision.csv``); ``columns``, those keys in order; ``stopped`` (why each
+    ladder stopped)."""
 
 def scenes_json() -> str:
     """``tumble scenes --json``."""
