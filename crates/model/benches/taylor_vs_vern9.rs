@@ -146,4 +146,6 @@ fn main() {
     compare::<6>("heavy-top", 10.0);
     compare::<4>("double-pendulum", 20.0);
     compare::<4>("spherical-pendulum", 10.0);
+    compare::<12>("heavy-top-so3", 10.0);
+    compare::<14>("free-hoop-so3", 10.0);
 }
