@@ -297,22 +297,7 @@ fn taylor_fixed_order_reaches_its_order_on_two_models() {
             t_end,
         );
         for p in [4u32, 6] {
-            let e: Vec<f64> = steps
-                .iter()
-                .map(|&n| max_diff(&taylor_fixed::<4>(name, set, p, n, t_end), &reference))
-                .collect();
-            let h: Vec<f64> = steps.iter().map(|&n| t_end / f64::from(n)).collect();
-            let observed = fit_power_law(&h, &e);
-            println!("{name}, p = {p}: errors {e:?}: observed order {observed:.2}");
-            assert!(
-                e[2] > 1e-12,
-                "{name}: error {:e} too close to the reference's",
-                e[2]
-            );
-            assert!(
-                (observed - f64::from(p)).abs() <= 0.3,
-                "{name}, p = {p}: observed {observed}"
-            );
+            check_order::<4>((name, set, t_end), p, steps, &reference);
         }
     }
 }
@@ -577,23 +562,31 @@ fn taylor_fixed_order_reaches_its_order_on_an_so3_model() {
     let t_end = 0.5;
     let reference = final_state_raw::<12>(name, t_end);
     for (p, steps) in [(4u32, [64u32, 128, 256]), (6, [32, 64, 128])] {
-        let e: Vec<f64> = steps
-            .iter()
-            .map(|&n| max_diff(&taylor_fixed::<12>(name, &[], p, n, t_end), &reference))
-            .collect();
-        let h: Vec<f64> = steps.iter().map(|&n| t_end / f64::from(n)).collect();
-        let observed = fit_power_law(&h, &e);
-        println!("{name}, p = {p}: errors {e:?}: observed order {observed:.2}");
-        assert!(
-            e[2] > 1e-12,
-            "error {:e} too close to the reference's",
-            e[2]
-        );
-        assert!(
-            (observed - f64::from(p)).abs() <= 0.3,
-            "p = {p}: observed {observed}"
-        );
+        check_order::<12>((name, &[], t_end), p, steps, &reference);
     }
+}
+
+/// The fixed-order Taylor method of order `p` on a case at three step counts, each twice the
+/// last: its errors against `reference` well above the reference's own, and the order fitted
+/// by least squares within ±0.3 of `p`.
+fn check_order<const S: usize>(case: Case, p: u32, steps: [u32; 3], reference: &[f64]) {
+    let (name, set, t_end) = case;
+    let e: Vec<f64> = steps
+        .iter()
+        .map(|&n| max_diff(&taylor_fixed::<S>(name, set, p, n, t_end), reference))
+        .collect();
+    let h: Vec<f64> = steps.iter().map(|&n| t_end / f64::from(n)).collect();
+    let observed = fit_power_law(&h, &e);
+    println!("{name}, p = {p}: errors {e:?}: observed order {observed:.2}");
+    assert!(
+        e[2] > 1e-12,
+        "{name}: error {:e} too close to the reference's",
+        e[2]
+    );
+    assert!(
+        (observed - f64::from(p)).abs() <= 0.3,
+        "{name}, p = {p}: observed {observed}"
+    );
 }
 
 /// The raw final state of a model after vern9 at 1e-15 (not the Taylor method).
