@@ -73,9 +73,7 @@ fn compare<const S: usize>(name: &str, t_end: f64) {
     let params = scene.info().default_params();
     let y0 = SVector::<f64, S>::from_column_slice(&scene.initial_state(&params));
     let ode = scene.ode(&params);
-    let series = scene
-        .taylor(&params)
-        .expect("a model without orientations on SO(3)");
+    let series = scene.taylor(&params);
     let (taylor, vern9) = (
         registry::find("taylor").unwrap(),
         registry::find("vern9").unwrap(),
@@ -148,4 +146,6 @@ fn main() {
     compare::<6>("heavy-top", 10.0);
     compare::<4>("double-pendulum", 20.0);
     compare::<4>("spherical-pendulum", 10.0);
+    compare::<12>("heavy-top-so3", 10.0);
+    compare::<14>("free-hoop-so3", 10.0);
 }

@@ -2,7 +2,8 @@
 //! command, sweep and study that runs a built-in scene runs a model file, with the methods of
 //! the first-order kind ([`ProblemKind::Ode`]: the explicit pairs, `rk4`, Gauss–Legendre and
 //! its compositions) and the Taylor methods ([`ProblemKind::TaylorSeries`]: coefficients by
-//! automatic differentiation on the tape, [`crate::taylor`]).
+//! automatic differentiation on the tape, [`crate::taylor`]; on a model with an orientation on
+//! SO(3), on the tape of its first-order system, the rotation matrix a point of ℝ⁹).
 //!
 //! The state is `(q, q̇)`; each evaluation of the right-hand side runs one instruction tape
 //! ([`crate::expr::tape`]) in a workspace allocated once per run: the forces, the kinematics
@@ -75,9 +76,10 @@ pub struct ModelScene {
     init: Tape,
     /// Every momentum (for [`ModelScene::momenta`]).
     momenta: Tape,
-    /// The series recursions of `rhs` ([`crate::taylor`]); none for a model with an
-    /// orientation on SO(3), whose kinematics `Ṙ = R ω̂` the recursions do not cover.
-    taylor: Option<TaylorPlan>,
+    /// The series recursions ([`crate::taylor`]): of `rhs` (`M q̈ = f`) for a model of scalar
+    /// coordinates, of `flow` (`y' = F(t, y)`, the kinematics `Ṙ = R ω̂` with it) for a model
+    /// with an orientation on SO(3).
+    taylor: TaylorPlan,
     /// Names of the displayed coordinates and rates (quaternions and body angular velocities
     /// for the orientations on SO(3), then the scalar coordinates and their rates).
     display: Display,
@@ -129,7 +131,11 @@ impl ModelScene {
         let mut outputs = eq.mass.clone();
         outputs.extend_from_slice(&eq.force);
         let rhs = Tape::with_fixed(&model.graph, &outputs, &fixed);
-        let taylor = (layout.so3 == 0).then(|| TaylorPlan::new(&rhs, 1 + 2 * n));
+        let taylor = if layout.so3 == 0 {
+            TaylorPlan::new(&rhs, 1 + 2 * n)
+        } else {
+            TaylorPlan::new(&flow, 1 + layout.state_len())
+        };
         let display = Display::of(&model);
         let mut row_out = vec![eq.energy];
         let mut diagnostics = vec![leak("energy".into()), leak("energy_rel_err".into())];
@@ -194,10 +200,9 @@ impl ModelScene {
             parameters: Box::leak(parameters.into_boxed_slice()),
             conserved: Box::leak(conserved.into_boxed_slice()),
             oracle: leak(format!("model file {}", model.origin)),
-            problems: match (&on_group, &taylor) {
-                (Ok(kinds), _) => kinds,
-                (Err(_), Some(_)) => &[ProblemKind::Ode, ProblemKind::TaylorSeries],
-                (Err(_), None) => &[ProblemKind::Ode],
+            problems: match &on_group {
+                Ok(kinds) => kinds,
+                Err(_) => &[ProblemKind::Ode, ProblemKind::TaylorSeries],
             },
             needs_dense_output: false,
             default_integrator: leak(model.run.integrator.clone()),

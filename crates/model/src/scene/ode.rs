@@ -86,17 +86,24 @@ impl ModelScene {
     }
 
     /// The equations at `params` as a system computing its Taylor coefficients (Taylor-mode
-    /// automatic differentiation on the tape, [`crate::taylor`]), its storage allocated here.
-    /// `None` for a model with an orientation on SO(3).
+    /// automatic differentiation on the tape, [`crate::taylor`]), its storage allocated here:
+    /// on the mass-matrix-and-forces tape for a model of scalar coordinates, on the
+    /// first-order tape (the state `(q, R, q̇, ω)` as [`ModelScene::ode`]'s) for a model with an
+    /// orientation on SO(3).
     #[must_use]
-    pub fn taylor(&self, params: &Params) -> Option<ModelTaylor<'_>> {
-        let plan = self.taylor.as_ref()?;
-        Some(ModelTaylor::new(
-            &self.rhs,
-            plan,
-            self.model.layout.n,
-            self.inputs(params),
-        ))
+    pub fn taylor(&self, params: &Params) -> ModelTaylor<'_> {
+        let layout = self.model.layout;
+        if layout.so3 == 0 {
+            ModelTaylor::new(&self.rhs, &self.taylor, layout.n, self.inputs(params))
+        } else {
+            ModelTaylor::first_order(
+                &self.flow,
+                &self.taylor,
+                layout.state_len(),
+                layout.dof(),
+                self.inputs(params),
+            )
+        }
     }
 
     /// Refuses an initial state where the mass matrix is singular or ill-conditioned, naming

@@ -1,5 +1,6 @@
 //! The Lie-group methods on a model with one orientation on SO(3): the kinds of problem it
-//! offers (as `free-body`, `heavy-top` or `free-hoop`), the model as a rigid body or a rigid
+//! offers (as `free-body`, `heavy-top` or `free-hoop`, and the Taylor series of its
+//! first-order system), the model as a rigid body or a rigid
 //! body coupled to its scalar coordinates ([`crate::group`]), and the runs of those, whose rows
 //! are written from the state `(q, R, q̇, ω)` as for the first-order system.
 
@@ -23,6 +24,7 @@ const FREE_BODY: &[ProblemKind] = &[
     ProblemKind::RigidBody,
     ProblemKind::LieVectorField,
     ProblemKind::Ode,
+    ProblemKind::TaylorSeries,
 ];
 
 /// … in a potential: as the built-in `heavy-top`.
@@ -30,10 +32,15 @@ const RIGID_BODY: &[ProblemKind] = &[
     ProblemKind::RigidBody,
     ProblemKind::LieVectorField,
     ProblemKind::Ode,
+    ProblemKind::TaylorSeries,
 ];
 
 /// … coupled to scalar coordinates: as the built-in `free-hoop`.
-const COUPLED: &[ProblemKind] = &[ProblemKind::CoupledRigidBody, ProblemKind::Ode];
+const COUPLED: &[ProblemKind] = &[
+    ProblemKind::CoupledRigidBody,
+    ProblemKind::Ode,
+    ProblemKind::TaylorSeries,
+];
 
 /// The Lie-group kinds a model offers at its default parameters, or why it offers none.
 pub(super) fn group_problems(

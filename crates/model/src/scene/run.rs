@@ -55,11 +55,11 @@ impl ModelScene {
             return self.run_on_group(params, plan, y0, (columns, 1 + shown), row, recorder);
         }
         let y = SVector::<f64, S>::from_column_slice(y0);
-        match (plan.kind, self.taylor(params)) {
-            (ProblemKind::TaylorSeries, Some(taylor)) => {
-                run_taylor_vector(&taylor, y, plan, columns, 1 + shown, row, &mut [], recorder)
-            }
-            _ => run_vector(&ode, y, plan, columns, 1 + shown, row, &mut [], recorder),
+        if plan.kind == ProblemKind::TaylorSeries {
+            let taylor = self.taylor(params);
+            run_taylor_vector(&taylor, y, plan, columns, 1 + shown, row, &mut [], recorder)
+        } else {
+            run_vector(&ode, y, plan, columns, 1 + shown, row, &mut [], recorder)
         }
     }
 }

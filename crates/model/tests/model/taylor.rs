@@ -6,7 +6,9 @@ use std::f64::consts::FRAC_PI_2;
 
 use nalgebra::SVector;
 use tumble_integrators::verification::fit_power_law;
-use tumble_integrators::{Driver, NoObserver, Taylor};
+use tumble_integrators::{
+    Driver, ExplicitRungeKutta, NoObserver, Taylor, TaylorSystem, Tolerances,
+};
 use tumble_model::expr::tape::Tape;
 use tumble_model::expr::taylor::{TaylorPlan, TaylorWork};
 use tumble_model::expr::{Fun, Graph, Id};
@@ -251,9 +253,7 @@ fn taylor_fixed<const S: usize>(
     for (k, v) in set {
         params.set(k, *v).unwrap();
     }
-    let system = scene
-        .taylor(&params)
-        .expect("a model without orientations on SO(3)");
+    let system = scene.taylor(&params);
     let mut y = SVector::<f64, S>::from_column_slice(&scene.initial_state(&params));
     let mut stepper = Taylor::fixed(p).stepper(&y);
     Driver::new(0.0, t_end)
@@ -297,22 +297,7 @@ fn taylor_fixed_order_reaches_its_order_on_two_models() {
             t_end,
         );
         for p in [4u32, 6] {
-            let e: Vec<f64> = steps
-                .iter()
-                .map(|&n| max_diff(&taylor_fixed::<4>(name, set, p, n, t_end), &reference))
-                .collect();
-            let h: Vec<f64> = steps.iter().map(|&n| t_end / f64::from(n)).collect();
-            let observed = fit_power_law(&h, &e);
-            println!("{name}, p = {p}: errors {e:?}: observed order {observed:.2}");
-            assert!(
-                e[2] > 1e-12,
-                "{name}: error {:e} too close to the reference's",
-                e[2]
-            );
-            assert!(
-                (observed - f64::from(p)).abs() <= 0.3,
-                "{name}, p = {p}: observed {observed}"
-            );
+            check_order::<4>((name, set, t_end), p, steps, &reference);
         }
     }
 }
@@ -374,4 +359,253 @@ fn taylor_agrees_with_vern9_on_the_spherical_pendulum_trajectory() {
         .fold(0.0, f64::max);
     println!("taylor vs vern9 at 1e-12 over 51 rows: max difference {worst:.2e}");
     assert!(worst < 1e-9, "{worst:e}");
+}
+
+/// The SO(3) models: the rigid body in a potential, coupled to a coordinate, torque-free.
+const SO3_MODELS: [&str; 3] = ["heavy-top-so3", "free-hoop-so3", "t-handle-so3"];
+
+#[test]
+fn taylor_coefficients_of_so3_models_are_the_flow_and_its_derivatives() {
+    // On the first-order tape (state (q, R, q̇, ω)): x₁ = F(x₀) (the same operations as the
+    // right-hand side, to round-off), x₂ = ½ dF/dt along the flow (a central difference), and
+    // the order-24 polynomial at a step h against 4000 RK4 steps over it (h half a radian of
+    // the fastest rate of the state).
+    for name in SO3_MODELS {
+        let scene = shipped(name);
+        let params = scene.info().default_params();
+        let x0 = scene.initial_state(&params);
+        let dim = x0.len();
+        let ode = scene.ode(&params);
+        let f = |x: &[f64]| {
+            let mut dy = vec![0.0; dim];
+            ode.rhs_slice(0.0, x, &mut dy);
+            dy
+        };
+        let order = 24;
+        let mut c = vec![0.0; (order + 1) * dim];
+        let system = scene.taylor(&params);
+        assert_eq!(system.dim(), dim);
+        system.coefficients(0.0, &x0, order, &mut c).unwrap();
+        let f0 = f(&x0);
+        let along = |s: f64| -> Vec<f64> { x0.iter().zip(&f0).map(|(x, d)| x + s * d).collect() };
+        let d = 1e-5;
+        let (fp, fm) = (f(&along(d)), f(&along(-d)));
+        for i in 0..dim {
+            assert!(
+                (c[dim + i] - f0[i]).abs() <= 1e-14 * (1.0 + f0[i].abs()),
+                "{name}: x1[{i}] = {} vs F = {}",
+                c[dim + i],
+                f0[i]
+            );
+            let x2 = (fp[i] - fm[i]) / (2.0 * d) / 2.0;
+            assert!(
+                (c[2 * dim + i] - x2).abs() <= 1e-7 * (1.0 + x2.abs()),
+                "{name}: x2[{i}] = {} vs {x2}",
+                c[2 * dim + i]
+            );
+        }
+        let spin = f0.iter().fold(1.0f64, |m, v| m.max(v.abs()));
+        let h = 0.5 / spin;
+        let steps = 4000;
+        let dt = h / f64::from(steps);
+        let mut y = x0.clone();
+        let axpy = |y: &[f64], k: &[f64], s: f64| -> Vec<f64> {
+            y.iter().zip(k).map(|(a, b)| a + s * b).collect()
+        };
+        for _ in 0..steps {
+            let k1 = f(&y);
+            let k2 = f(&axpy(&y, &k1, dt / 2.0));
+            let k3 = f(&axpy(&y, &k2, dt / 2.0));
+            let k4 = f(&axpy(&y, &k3, dt));
+            for i in 0..dim {
+                y[i] += (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]) * (dt / 6.0);
+            }
+        }
+        let mut worst = 0.0f64;
+        for i in 0..dim {
+            let sum = (0..=order).rev().fold(0.0, |s, k| s * h + c[k * dim + i]);
+            worst = worst.max((sum - y[i]).abs() / (1.0 + y[i].abs()));
+        }
+        println!("{name}: polynomial at h = {h:.3e} against RK4: {worst:.2e}");
+        assert!(worst <= 1e-13, "{name}: {worst:e}");
+    }
+}
+
+/// The largest `|RᵀR − I|` entry of the rotation at `y[at..at + 9]` (by rows).
+fn off_so3(y: &[f64], at: usize) -> f64 {
+    let r = |a: usize, b: usize| y[at + 3 * a + b];
+    let mut worst = 0.0f64;
+    for i in 0..3 {
+        for j in 0..3 {
+            let dot: f64 = (0..3).map(|k| r(k, i) * r(k, j)).sum();
+            let want = if i == j { 1.0 } else { 0.0 };
+            worst = worst.max((dot - want).abs());
+        }
+    }
+    worst
+}
+
+#[test]
+fn taylor_on_the_so3_heavy_top_agrees_with_the_builtin_double_double_reference() {
+    // The model's rows (quaternion, body angular velocity, energy, axis) at every 0.1 s of
+    // 10 s (dense output) against the built-in `heavy-top` under taylor-dd at 1e-26, its own
+    // hand-written equations on ℝ¹² in double-double. The tolerance bounds each step's error
+    // against the largest component of the state (the spin, 50 rad/s).
+    let t_end = 10.0;
+    let rows_at = |scene: &dyn Scene, method: &str, tol: f64| {
+        let options = tumble_scenarios::RunOptions {
+            integrator: Some(method.to_string()),
+            step: Some(StepControl::Tolerance(tol)),
+            t_end: Some(t_end),
+            output_dt: Some(0.1),
+            ..tumble_scenarios::RunOptions::default()
+        };
+        let mut rows = tumble_scenarios::scene::Rows::default();
+        let params = scene.info().default_params();
+        scene.run(&params, &options, &mut rows).unwrap();
+        (scene.info().columns(), rows.0)
+    };
+    let builtin = tumble_scenarios::scenes::find("heavy-top").unwrap();
+    let (bc, br) = rows_at(builtin, "taylor-dd", 1e-26);
+    let model = shipped("heavy-top-so3");
+    for tol in [1e-10, 1e-12, 1e-14] {
+        let (mc, mr) = rows_at(model, "taylor", tol);
+        assert_eq!(mr.len(), br.len());
+        let mut worst = 0.0f64;
+        let mut shared = 0;
+        for name in [
+            "qw", "qx", "qy", "qz", "omega_x", "omega_y", "omega_z", "energy",
+        ] {
+            let (m, b) = (column(&mc, &mr, name), column(&bc, &br, name));
+            shared += 1;
+            for (x, y) in m.iter().zip(&b) {
+                worst = worst.max((x - y).abs() / (1.0 + y.abs()));
+            }
+        }
+        let energy = column(&mc, &mr, "energy_rel_err")
+            .into_iter()
+            .fold(0.0, f64::max);
+        println!(
+            "heavy-top-so3, taylor at {tol:e}: {shared} columns against taylor-dd: {worst:.2e}; \
+             energy {energy:.2e}"
+        );
+        assert!(
+            worst <= 50.0 * tol,
+            "tol {tol:e}: {worst:e} from the reference"
+        );
+        assert!(energy <= tol, "tol {tol:e}: energy drift {energy:e}");
+    }
+}
+
+#[test]
+fn taylor_on_the_so3_heavy_top_conserves_its_integrals_and_stays_near_so3() {
+    // The raw state (R by rows, ω) after 10 s of the adaptive method: the energy, the vertical
+    // angular momentum L_z = (R I ω)_z and the spin ω₃ (I₁ = I₂) are conserved by the flow;
+    // R leaves SO(3) by the series' truncation error only.
+    let scene = shipped("heavy-top-so3");
+    let params = scene.info().default_params();
+    let inertia = [5.0, 5.0, 1.0];
+    let (mgl, t_end) = (20.0, 10.0);
+    let integrals = |y: &[f64]| {
+        let w = &y[9..12];
+        let energy = 0.5 * (0..3).map(|b| inertia[b] * w[b] * w[b]).sum::<f64>() + mgl * y[8];
+        let lz = (0..3).map(|b| y[6 + b] * inertia[b] * w[b]).sum::<f64>();
+        [energy, lz, w[2]]
+    };
+    let y0 = scene.initial_state(&params);
+    let start = integrals(&y0);
+    let system = scene.taylor(&params);
+    let mut drifts = Vec::new();
+    for tol in [1e-8, 1e-12] {
+        let mut y = SVector::<f64, 12>::from_column_slice(&y0);
+        let mut stepper = Taylor::adaptive().stepper(&y);
+        let report = Driver::new(0.0, t_end)
+            .unwrap()
+            .run_adaptive(
+                &mut stepper,
+                &system,
+                &mut y,
+                &Tolerances::new(tol, tol).unwrap(),
+                &mut [],
+                &mut NoObserver,
+            )
+            .unwrap();
+        let end = integrals(y.as_slice());
+        let rel: Vec<f64> = (0..3)
+            .map(|i| (end[i] - start[i]).abs() / start[i].abs())
+            .collect();
+        let drift = off_so3(y.as_slice(), 0);
+        println!(
+            "heavy-top-so3, taylor at {tol:e}: {} steps; energy, L_z, omega_3 relative drift \
+             {rel:?}; |R^T R - I| {drift:.2e}",
+            report.steps
+        );
+        for (what, r) in ["energy", "L_z", "omega_3"].iter().zip(&rel) {
+            assert!(*r <= tol, "tol {tol:e}: {what} drifts by {r:e}");
+        }
+        // The drift is the method's error, set by the tolerance against the state's largest
+        // component (the spin, 50 rad/s): well above round-off at a loose tolerance.
+        assert!(
+            drift <= 10.0 * tol * 50.0,
+            "tol {tol:e}: |R^T R - I| {drift:e}"
+        );
+        drifts.push(drift);
+    }
+    assert!(drifts[0] > 1e3 * drifts[1], "{drifts:?}");
+}
+
+#[test]
+fn taylor_fixed_order_reaches_its_order_on_an_so3_model() {
+    // The heavy top on SO(3) over 0.5 s (four turns of its spin), errors of the raw state
+    // (R, ω) against vern9 at 1e-15 at three step counts, each twice the last: orders 4 and 6.
+    let name = "heavy-top-so3";
+    let t_end = 0.5;
+    let reference = final_state_raw::<12>(name, t_end);
+    for (p, steps) in [(4u32, [64u32, 128, 256]), (6, [32, 64, 128])] {
+        check_order::<12>((name, &[], t_end), p, steps, &reference);
+    }
+}
+
+/// The fixed-order Taylor method of order `p` on a case at three step counts, each twice the
+/// last: its errors against `reference` well above the reference's own, and the order fitted
+/// by least squares within ±0.3 of `p`.
+fn check_order<const S: usize>(case: Case, p: u32, steps: [u32; 3], reference: &[f64]) {
+    let (name, set, t_end) = case;
+    let e: Vec<f64> = steps
+        .iter()
+        .map(|&n| max_diff(&taylor_fixed::<S>(name, set, p, n, t_end), reference))
+        .collect();
+    let h: Vec<f64> = steps.iter().map(|&n| t_end / f64::from(n)).collect();
+    let observed = fit_power_law(&h, &e);
+    println!("{name}, p = {p}: errors {e:?}: observed order {observed:.2}");
+    assert!(
+        e[2] > 1e-12,
+        "{name}: error {:e} too close to the reference's",
+        e[2]
+    );
+    assert!(
+        (observed - f64::from(p)).abs() <= 0.3,
+        "{name}, p = {p}: observed {observed}"
+    );
+}
+
+/// The raw final state of a model after vern9 at 1e-15 (not the Taylor method).
+fn final_state_raw<const S: usize>(name: &str, t_end: f64) -> Vec<f64> {
+    let scene = shipped(name);
+    let params = scene.info().default_params();
+    let ode = scene.ode(&params);
+    let mut y = SVector::<f64, S>::from_column_slice(&scene.initial_state(&params));
+    let mut stepper = ExplicitRungeKutta::vern9().stepper(&y);
+    Driver::new(0.0, t_end)
+        .unwrap()
+        .run_adaptive(
+            &mut stepper,
+            &ode,
+            &mut y,
+            &Tolerances::new(1e-15, 1e-15).unwrap(),
+            &mut [],
+            &mut NoObserver,
+        )
+        .unwrap();
+    y.as_slice().to_vec()
 }
