@@ -189,6 +189,10 @@ pub(crate) fn simulate<'py>(
     );
     let out = PyDict::new(py);
     out.set_item("record", serde_json::to_string(&record).map_err(refused)?)?;
+    // The record's parameters are a map (sorted by name); the scene declares an order, which
+    // figures and listings keep.
+    let order: Vec<&str> = params.iter().map(|(name, _)| name).collect();
+    out.set_item("parameter_order", order)?;
     let data: Vec<f64> = rows.concat();
     out.set_item("data", f64_bytes(py, &data))?;
     out.set_item("coordinates", info.coordinates)?;

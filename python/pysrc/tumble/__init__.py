@@ -108,6 +108,9 @@ class Simulation:
         for key, value in self.record.items():
             if key != "columns":
                 setattr(self, key, value)
+        # In the scene's declared order (the record's map is sorted by name).
+        given = self.record["parameters"]
+        self.parameters = {name: given[name] for name in raw["parameter_order"] if name in given}
         names: List[str] = list(self.record["columns"])
         rows: int = self.record["rows"]
         self._data: bytes = raw["data"]

@@ -25,7 +25,7 @@ def simulate(
     """``record``: the run's record as JSON text (the ``FILE.csv.json`` of ``tumble simulate``,
     its ``columns`` and ``rows`` included); ``data``: the columns one after the other,
     native-endian float64 bytes, ``rows`` values each; the scene's ``coordinates`` and
-    ``rates``."""
+    ``rates``; ``parameter_order``: the parameters' names in the scene's order."""
 
 def plot(
     input: str,
