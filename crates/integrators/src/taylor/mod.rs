@@ -146,6 +146,15 @@ pub fn check_finite<S: SeriesScalar>(
     }
 }
 
+/// The step a driver's clock takes from `t` over `h`: `fl(t + h) − t`, exact when
+/// `|t| ≥ |h|` (Fast2Sum, Dekker 1971). A Taylor method sums its polynomial there, so that its
+/// state belongs to the time the driver records ([`TaylorStepper`]; the map's lanes alike).
+#[must_use]
+#[inline]
+pub fn clock_step(t: f64, h: f64) -> f64 {
+    (t + h) - t
+}
+
 /// How a Taylor method chooses its order.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum TaylorOrder {
@@ -382,7 +391,7 @@ impl<Y: crate::VectorState> TaylorStepper<Y> {
     /// `√400 · 4·10⁻¹⁶ s`, times the spin); heyoka carries its time in double length for the
     /// same reason (Biscani & Izzo 2021, §4).
     fn commit(&mut self, t: f64, y: &mut Y, h: f64) {
-        let step = (t + h) - t;
+        let step = clock_step(t, h);
         Self::sum(&self.coeffs, self.n, self.order, step, y.as_mut_slice());
         std::mem::swap(&mut self.coeffs, &mut self.dense);
         if self.coeffs.len() < self.dense.len() {

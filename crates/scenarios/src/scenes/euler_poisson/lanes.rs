@@ -38,7 +38,7 @@ use std::time::Instant;
 
 use tumble_integrators::Error as IntegrationError;
 use tumble_integrators::taylor::{
-    TaylorError, jorba_zou_order, jorba_zou_step, jorba_zou_tolerance,
+    TaylorError, clock_step, jorba_zou_order, jorba_zou_step, jorba_zou_tolerance,
 };
 
 use super::{EulerPoissonHoop, State};
@@ -324,9 +324,8 @@ impl Batch {
                 if last {
                     step = t_end - t[l];
                 }
-                // The step the lane's clock takes, as the scalar method sums it
-                // (`tumble_integrators::TaylorStepper`): `fl(t + h) − t`.
-                step_of[l] = (t[l] + step) - t[l];
+                // The step the lane's clock takes, as the scalar method sums it.
+                step_of[l] = clock_step(t[l], step);
                 last_of[l] = last;
             }
             // Every stepping lane's state at the end of its step, and Γ_z' at the sampling
