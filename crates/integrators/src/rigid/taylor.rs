@@ -18,7 +18,8 @@ use nalgebra::{Matrix3, Vector3};
 use super::FreeRigidBody;
 use super::problem::{HeavyTop, RigidBody};
 use crate::taylor::{
-    DoubleDouble, DoubleDoubleSystem, SeriesScalar, TaylorError, TaylorSystem, check_finite,
+    CrossSums, DoubleDouble, DoubleDoubleSystem, SeriesScalar, TaylorError, TaylorSystem,
+    check_finite,
 };
 
 /// State components: `R` (9, column-major) and `m` (3).
@@ -39,8 +40,8 @@ pub struct TaylorHeavyTop {
     /// `J⁻¹` and `w ρ` of the same `f64` inertia, weight and centre, in double-double.
     double_double: Constants<DoubleDouble>,
     /// The recursion's series (grown once to the largest order asked).
-    work: RefCell<Work<f64>>,
-    work_dd: RefCell<Work<DoubleDouble>>,
+    work: RefCell<CrossSums<f64, N>>,
+    work_dd: RefCell<CrossSums<DoubleDouble, N>>,
     arch: pulp::Arch,
 }
 
@@ -70,8 +71,8 @@ impl TaylorHeavyTop {
                 inverse: inverse_dd(inertia),
                 weighted_center: std::array::from_fn(|i| DoubleDouble::new_mul(center[i], weight)),
             },
-            work: RefCell::new(Work::default()),
-            work_dd: RefCell::new(Work::default()),
+            work: RefCell::new(CrossSums::default()),
+            work_dd: RefCell::new(CrossSums::default()),
             arch: pulp::Arch::new(),
         }
     }
@@ -96,17 +97,24 @@ fn inverse_dd(m: &Matrix3<f64>) -> [[DoubleDouble; 3]; 3] {
 }
 
 /// The output component `i` of the twelve products `(rₐ × ω)ᵦ` (`i = 3b + a`, the layout of
-/// `R`) and `(m × ω)ᵦ` (`i = 9 + b`), each `uᵦ₊₁ wᵦ₊₂ − uᵦ₊₂ wᵦ₊₁`: where in a state its
-/// two `u` factors are, and which components of `ω` multiply them.
-struct Pattern {
-    first: [usize; N],
-    second: [usize; N],
-    w_first: [usize; N],
-    w_second: [usize; N],
+/// `R`) and `(m × ω)ᵦ` (`i = 9 + b`), each `uᵦ₊₁ wᵦ₊₂ − uᵦ₊₂ wᵦ₊₁`: where in a state
+/// `(R column-major, m, …)` its two `u` factors are, and which components of `ω` multiply
+/// them (the lanes of a [`CrossSums`]).
+#[derive(Debug, Clone, Copy)]
+pub struct CrossPattern {
+    /// The index of `uᵦ₊₁` in the state.
+    pub first: [usize; N],
+    /// The index of `uᵦ₊₂` in the state.
+    pub second: [usize; N],
+    /// The component of `ω` that multiplies `uᵦ₊₁`.
+    pub w_first: [usize; N],
+    /// The component of `ω` that multiplies `uᵦ₊₂`.
+    pub w_second: [usize; N],
 }
 
-const PATTERN: Pattern = {
-    let mut p = Pattern {
+/// [`CrossPattern`] of `Ṙ = R hat(ω)` (row by row, `ṙₐ = rₐ × ω`) and `m × ω`.
+pub const PATTERN: CrossPattern = {
+    let mut p = CrossPattern {
         first: [0; N],
         second: [0; N],
         w_first: [0; N],
@@ -129,34 +137,6 @@ const PATTERN: Pattern = {
     p
 };
 
-/// The series the recursion keeps per order `j`, each laid out by output component
-/// ([`PATTERN`]): the first and second `u` factors of `xⱼ`, and the `ω` components that
-/// multiply them, so that order `k` of all twelve products is
-/// `Σⱼ firstⱼ ⊙ w_firstₖ₋ⱼ − secondⱼ ⊙ w_secondₖ₋ⱼ`, contiguous element-wise work.
-#[derive(Debug, Clone, Default)]
-struct Work<S> {
-    first: Vec<S>,
-    second: Vec<S>,
-    w_first: Vec<S>,
-    w_second: Vec<S>,
-}
-
-impl<S: SeriesScalar> Work<S> {
-    fn reserve(&mut self, order: usize) {
-        let len = N * (order + 1);
-        if self.first.len() < len {
-            for v in [
-                &mut self.first,
-                &mut self.second,
-                &mut self.w_first,
-                &mut self.w_second,
-            ] {
-                v.resize(len, S::ZERO);
-            }
-        }
-    }
-}
-
 /// The recursion of the module doc in any scalar: coefficients `0 ..= order` of the solution
 /// through `x0` into `coeffs`.
 ///
@@ -166,7 +146,7 @@ impl<S: SeriesScalar> Work<S> {
 #[inline(always)]
 fn expand<S: SeriesScalar>(
     c: &Constants<S>,
-    work: &mut Work<S>,
+    work: &mut CrossSums<S, N>,
     x0: &[S],
     order: usize,
     coeffs: &mut [S],
@@ -179,29 +159,14 @@ fn expand<S: SeriesScalar>(
         // ωₖ = J⁻¹ mₖ (a row of J⁻¹ times mₖ, summed left to right).
         let omega: [S; 3] =
             std::array::from_fn(|i| a[i][0] * x[9] + a[i][1] * x[10] + a[i][2] * x[11]);
-        let at = k * N..(k + 1) * N;
-        let (first, second) = (&mut work.first[at.clone()], &mut work.second[at.clone()]);
-        let (w_first, w_second) = (&mut work.w_first[at.clone()], &mut work.w_second[at]);
-        for i in 0..N {
-            first[i] = x[PATTERN.first[i]];
-            second[i] = x[PATTERN.second[i]];
-            w_first[i] = omega[PATTERN.w_first[i]];
-            w_second[i] = omega[PATTERN.w_second[i]];
-        }
-        let mut sums = [S::ZERO; N];
-        let len = (k + 1) * N;
-        let ups = work.first[..len]
-            .chunks_exact(N)
-            .zip(work.second[..len].chunks_exact(N));
-        let downs = work.w_first[..len]
-            .chunks_exact(N)
-            .zip(work.w_second[..len].chunks_exact(N))
-            .rev();
-        for ((u1, u2), (w1, w2)) in ups.zip(downs) {
-            for i in 0..N {
-                sums[i] += u1[i] * w1[i] - u2[i] * w2[i];
-            }
-        }
+        work.set(
+            k,
+            PATTERN.first.map(|i| x[i]),
+            PATTERN.second.map(|i| x[i]),
+            PATTERN.w_first.map(|i| omega[i]),
+            PATTERN.w_second.map(|i| omega[i]),
+        );
+        let sums = work.sum(0, k);
         // + w (Rᵀe₃)ₖ × ρ, Rᵀe₃ the third row.
         let g = [x[2], x[5], x[8]];
         let torque = [
@@ -227,7 +192,7 @@ fn expand<S: SeriesScalar>(
 /// for bit).
 struct Expand<'a> {
     c: &'a Constants<f64>,
-    work: &'a mut Work<f64>,
+    work: &'a mut CrossSums<f64, N>,
     x0: &'a [f64],
     order: usize,
     coeffs: &'a mut [f64],

@@ -22,8 +22,10 @@
 //! `1e-30` and not by the round-off of `f64`: the references other methods are measured against.
 
 mod double_double;
+mod sums;
 
 pub use double_double::{DoubleDouble, DoubleDoubleTaylorStepper, SeriesScalar};
+pub use sums::CrossSums;
 
 /// Why a [`TaylorSystem`] could not give its coefficients.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]

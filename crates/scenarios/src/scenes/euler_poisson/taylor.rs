@@ -16,47 +16,40 @@
 //! (`k sₖ = Σⱼ₌₁ᵏ j uⱼ cₖ₋ⱼ`, `k cₖ = −Σⱼ₌₁ᵏ j uⱼ sₖ₋ⱼ` for `s, c = sin u, cos u`): Moore 1966,
 //! ch. 11; Jorba & Zou 2005, §3; Griewank & Walther 2008, §13.2. Per order, 29 products on the
 //! reduction (6 more for each further row of `R`).
+//!
+//! Two forms of the same recursion:
+//! - on the reduction ([`TaylorHoop::reduced`]) one product at a time, in the order of
+//!   operations the map's lanes ([`super::lanes`]) repeat bit for bit;
+//! - on the full model ([`TaylorHoop::full`], the scene's `taylor`) with the products of each
+//!   stage of an order side by side ([`CrossSums`]): the sine–cosine sums (4 lanes), `ω_x, ω_y`
+//!   (2), `D, W` (2), then `Ṙ`, `Π × ω`, the gravity terms and `ṗ_α`'s sums (16), each stage
+//!   one element-wise pass. The same sums, grouped `Σⱼ (aⱼ bₖ₋ⱼ − cⱼ dₖ₋ⱼ)` instead of
+//!   `Σⱼ aⱼ bₖ₋ⱼ − Σⱼ cⱼ dₖ₋ⱼ`: the two forms agree to round-off, not bit for bit.
 
 use std::cell::RefCell;
 
 use crate::scenes::cauchy;
-use tumble_integrators::taylor::{TaylorError, TaylorSystem, check_finite};
+use tumble_integrators::rigid::taylor::PATTERN;
+use tumble_integrators::taylor::{CrossSums, TaylorError, TaylorSystem, check_finite};
 
 use super::EulerPoissonHoop;
 
-/// Where the state's parts are in a vector of `n` components.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-struct Layout {
-    n: usize,
-    /// `Γ` (the third row of `R`).
-    gamma: [usize; 3],
-    /// The other rows of `R`, each moving as `ṙ = r × ω` (none on the reduction).
-    rows: &'static [[usize; 3]],
-    /// `Π`, `α`, `p_α`: `pi..pi + 3`, `alpha`, `alpha + 1`.
-    pi: usize,
-    alpha: usize,
-}
+/// The reduced state `(Γ, Π, α, p_α)` ([`super::State`]): where its parts are.
+const N_REDUCED: usize = 8;
+const GAMMA: [usize; 3] = [0, 1, 2];
+const PI: usize = 3;
+const ALPHA: usize = 6;
+const P_ALPHA: usize = 7;
 
-/// `(Γ, Π, α, p_α)` ([`super::State`]).
-const REDUCED: Layout = Layout {
-    n: 8,
-    gamma: [0, 1, 2],
-    rows: &[],
-    pi: 3,
-    alpha: 6,
-};
+/// The full model's flat state `(R column-major, Π, α, p_α)` ∈ ℝ¹⁴
+/// ([`crate::scenes::free_hoop::flatten`]): row `a` of `R` is components `a, a + 3, a + 6`,
+/// `Γ` (the third row) `2, 5, 8`.
+const N_FULL: usize = 14;
+const FULL_PI: usize = 9;
+const FULL_ALPHA: usize = 12;
+const FULL_P_ALPHA: usize = 13;
 
-/// `(R column-major, Π, α, p_α)`, the full model's flat state ([`crate::scenes::free_hoop::flatten`]):
-/// row `a` of `R` is components `a, a + 3, a + 6`.
-const FULL: Layout = Layout {
-    n: 14,
-    gamma: [2, 5, 8],
-    rows: &[[0, 3, 6], [1, 4, 7]],
-    pi: 9,
-    alpha: 12,
-};
-
-/// The series of the state's components and of the intermediate quantities, each
+/// The series of the reduced state's components and of the intermediate quantities, each
 /// contiguous (component-major, so that every Cauchy product reads two slices).
 #[derive(Debug, Clone, Default)]
 struct Series {
@@ -81,14 +74,57 @@ pub(super) const W: usize = 8;
 pub(super) const AUX: usize = 9;
 
 impl Series {
-    /// Room for orders `0 ..= order` of `n` components (grown once).
-    fn reserve(&mut self, n: usize, order: usize) {
-        if self.len < order + 1 || self.x.len() < n * self.len {
-            self.len = self.len.max(order + 1);
-            self.x = vec![0.0; n * self.len];
+    /// Room for orders `0 ..= order` (grown once).
+    fn reserve(&mut self, order: usize) {
+        if self.len < order + 1 {
+            self.len = order + 1;
+            self.x = vec![0.0; N_REDUCED * self.len];
             self.aux = vec![0.0; AUX * self.len];
         }
     }
+}
+
+/// The lanes of the full model's last stage ([`FullWork::main`]): `Ṙ` and `Π × ω` in
+/// [`PATTERN`]'s lanes `0 .. 12`, then these.
+const GZ_SIN: usize = 12;
+const GZ_COS: usize = 13;
+/// `G = Γ_x sin α − Γ_y cos α`.
+const G: usize = 14;
+/// `S D/2 − C W`.
+const SD_CW: usize = 15;
+
+/// The full model's workspace: the factors of each stage's Cauchy sums, by order.
+#[derive(Debug, Clone, Default)]
+struct FullWork {
+    /// `k sₖ`, `k cₖ` of `sin α, cos α` and `(k/2)` of `sin 2α, cos 2α`: `j αⱼ` against
+    /// `(cos α, sin α, cos 2α, sin 2α)ₖ₋ⱼ`.
+    trig: CrossSums<f64, 4>,
+    /// `Σ C Π_x + S Π_y` and `Σ S Π_x − C Π_y` (the sums in `ω_x, ω_y`).
+    omega: CrossSums<f64, 2>,
+    /// `D = ω_x² − ω_y²`, `W = ω_x ω_y`.
+    dw: CrossSums<f64, 2>,
+    /// `Ṙ`, `Π × ω` and the sums of the gravity terms and of `ṗ_α` (lanes above).
+    main: CrossSums<f64, 16>,
+}
+
+impl FullWork {
+    fn reserve(&mut self, order: usize) {
+        self.trig.reserve(order);
+        self.omega.reserve(order);
+        self.dw.reserve(order);
+        self.main.reserve(order);
+    }
+}
+
+/// Which state the recursion runs on, with its workspace.
+#[derive(Debug, Clone)]
+enum Form {
+    Reduced(RefCell<Series>),
+    Full {
+        /// Boxed: sixteen growable series, against the reduction's two.
+        work: Box<RefCell<FullWork>>,
+        arch: pulp::Arch,
+    },
 }
 
 /// The free hoop's equations as a [`TaylorSystem`] (module doc): on the Euler–Poisson state
@@ -96,9 +132,7 @@ impl Series {
 #[derive(Debug, Clone)]
 pub struct TaylorHoop {
     eq: EulerPoissonHoop,
-    layout: Layout,
-    /// The workspace of [`TaylorSystem::coefficients`].
-    series: RefCell<Series>,
+    form: Form,
 }
 
 impl TaylorHoop {
@@ -107,8 +141,7 @@ impl TaylorHoop {
     pub fn reduced(eq: EulerPoissonHoop) -> Self {
         Self {
             eq,
-            layout: REDUCED,
-            series: RefCell::new(Series::default()),
+            form: Form::Reduced(RefCell::new(Series::default())),
         }
     }
 
@@ -117,15 +150,20 @@ impl TaylorHoop {
     pub fn full(eq: EulerPoissonHoop) -> Self {
         Self {
             eq,
-            layout: FULL,
-            series: RefCell::new(Series::default()),
+            form: Form::Full {
+                work: Box::new(RefCell::new(FullWork::default())),
+                arch: pulp::Arch::new(),
+            },
         }
     }
 }
 
 impl TaylorSystem for TaylorHoop {
     fn dim(&self) -> usize {
-        self.layout.n
+        match self.form {
+            Form::Reduced(_) => N_REDUCED,
+            Form::Full { .. } => N_FULL,
+        }
     }
 
     fn coefficients(
@@ -135,95 +173,200 @@ impl TaylorSystem for TaylorHoop {
         order: usize,
         coeffs: &mut [f64],
     ) -> Result<(), TaylorError> {
-        let Layout {
-            n,
-            gamma: g,
-            rows,
-            pi,
-            alpha,
-        } = self.layout;
-        let p = alpha + 1;
-        let mut series = self.series.borrow_mut();
-        series.reserve(n, order);
-        let Series { len, x, aux } = &mut *series;
-        let len = *len;
-        for (i, v) in x0[..n].iter().enumerate() {
-            x[i * len] = *v;
+        match &self.form {
+            Form::Reduced(series) => reduced(&self.eq, &mut series.borrow_mut(), x0, order, coeffs),
+            Form::Full { work, arch } => arch.dispatch(Full {
+                eq: &self.eq,
+                work: &mut work.borrow_mut(),
+                x0,
+                order,
+                coeffs,
+            }),
         }
-        let eq = &self.eq;
-        let half_mu = 0.5 * eq.mu;
-        let (a0, a1) = ((eq.jd + half_mu) * eq.inv_det, half_mu * eq.inv_det);
-        (aux[SIN * len], aux[COS * len]) = x0[alpha].sin_cos();
-        (aux[SIN2 * len], aux[COS2 * len]) = (2.0 * x0[alpha]).sin_cos();
-        for k in 0..order {
-            // Orders 0 ..= k are known; order k + 1 of the state is written.
-            let xs = |i: usize| &x[i * len..i * len + k + 1];
-            if k > 0 {
-                // sin/cos of α and of 2α: k sₖ = Σ j αⱼ cₖ₋ⱼ, k cₖ = −Σ j αⱼ sₖ₋ⱼ.
-                let a = xs(alpha);
-                let (mut ss, mut cc) = (0.0, 0.0);
-                let (mut ss2, mut cc2) = (0.0, 0.0);
-                for j in 1..=k {
-                    let u = j as f64 * a[j];
-                    ss += u * aux[COS * len + k - j];
-                    cc += u * aux[SIN * len + k - j];
-                    ss2 += u * aux[COS2 * len + k - j];
-                    cc2 += u * aux[SIN2 * len + k - j];
-                }
-                let inv = 1.0 / k as f64;
-                aux[SIN * len + k] = ss * inv;
-                aux[COS * len + k] = -cc * inv;
-                aux[SIN2 * len + k] = 2.0 * ss2 * inv;
-                aux[COS2 * len + k] = -2.0 * cc2 * inv;
+    }
+}
+
+/// The recursion on the reduction, one Cauchy product at a time (the lanes' order of
+/// operations).
+fn reduced(
+    eq: &EulerPoissonHoop,
+    series: &mut Series,
+    x0: &[f64],
+    order: usize,
+    coeffs: &mut [f64],
+) -> Result<(), TaylorError> {
+    let (g, pi, alpha, p) = (GAMMA, PI, ALPHA, P_ALPHA);
+    series.reserve(order);
+    let Series { len, x, aux } = series;
+    let len = *len;
+    for (i, v) in x0[..N_REDUCED].iter().enumerate() {
+        x[i * len] = *v;
+    }
+    let half_mu = 0.5 * eq.mu;
+    let (a0, a1) = ((eq.jd + half_mu) * eq.inv_det, half_mu * eq.inv_det);
+    (aux[SIN * len], aux[COS * len]) = x0[alpha].sin_cos();
+    (aux[SIN2 * len], aux[COS2 * len]) = (2.0 * x0[alpha]).sin_cos();
+    for k in 0..order {
+        // Orders 0 ..= k are known; order k + 1 of the state is written.
+        let xs = |i: usize| &x[i * len..i * len + k + 1];
+        if k > 0 {
+            // sin/cos of α and of 2α: k sₖ = Σ j αⱼ cₖ₋ⱼ, k cₖ = −Σ j αⱼ sₖ₋ⱼ.
+            let a = xs(alpha);
+            let (mut ss, mut cc) = (0.0, 0.0);
+            let (mut ss2, mut cc2) = (0.0, 0.0);
+            for j in 1..=k {
+                let u = j as f64 * a[j];
+                ss += u * aux[COS * len + k - j];
+                cc += u * aux[SIN * len + k - j];
+                ss2 += u * aux[COS2 * len + k - j];
+                cc2 += u * aux[SIN2 * len + k - j];
             }
-            let at = |q: usize| &aux[q * len..q * len + k + 1];
-            // ωₖ, linear in Π with coefficients affine in sin 2α, cos 2α.
-            let (px, py, pz) = (xs(pi), xs(pi + 1), xs(pi + 2));
-            let (s2, c2) = (at(SIN2), at(COS2));
-            let wx = a0 * px[k] + a1 * (cauchy(c2, px, k) + cauchy(s2, py, k));
-            let wy = a0 * py[k] + a1 * (cauchy(s2, px, k) - cauchy(c2, py, k));
-            let wz = (pz[k] - xs(p)[k]) / eq.jn;
-            aux[WX * len + k] = wx;
-            aux[WY * len + k] = wy;
-            aux[WZ * len + k] = wz;
-            let at = |q: usize| &aux[q * len..q * len + k + 1];
-            let (wx, wy) = (at(WX), at(WY));
-            let dk = cauchy(wx, wx, k) - cauchy(wy, wy, k);
-            let wk = cauchy(wx, wy, k);
-            aux[D * len + k] = dk;
-            aux[W * len + k] = wk;
-            let at = |q: usize| &aux[q * len..q * len + k + 1];
-            let (wx, wy, wz) = (at(WX), at(WY), at(WZ));
-            let scale = 1.0 / (k + 1) as f64;
-            let mut next = [0.0; 14];
-            // Each row r of R (Γ among them): ṙ = r × ω.
-            for row in rows.iter().chain(std::iter::once(&g)) {
-                let (rx, ry, rz) = (xs(row[0]), xs(row[1]), xs(row[2]));
-                next[row[0]] = cauchy(ry, wz, k) - cauchy(rz, wy, k);
-                next[row[1]] = cauchy(rz, wx, k) - cauchy(rx, wz, k);
-                next[row[2]] = cauchy(rx, wy, k) - cauchy(ry, wx, k);
-            }
-            // Π̇ = Π × ω + k (−Γ_z s, Γ_z c, G), G = Γ_x s − Γ_y c.
-            let (gx, gy, gz) = (xs(g[0]), xs(g[1]), xs(g[2]));
-            let (s, c) = (at(SIN), at(COS));
-            let gg = cauchy(gx, s, k) - cauchy(gy, c, k);
-            next[pi] = cauchy(py, wz, k) - cauchy(pz, wy, k) - eq.k * cauchy(gz, s, k);
-            next[pi + 1] = cauchy(pz, wx, k) - cauchy(px, wz, k) + eq.k * cauchy(gz, c, k);
-            next[pi + 2] = cauchy(px, wy, k) - cauchy(py, wx, k) + eq.k * gg;
-            // α̇ = p/μ − ω_z; ṗ = μ (S D/2 − C W) + k G.
-            next[alpha] = xs(p)[k] / eq.mu - wz[k];
-            next[p] =
-                eq.mu * (0.5 * cauchy(at(SIN2), at(D), k) - cauchy(at(COS2), at(W), k)) + eq.k * gg;
-            for (i, v) in next[..n].iter().enumerate() {
-                x[i * len + k + 1] = v * scale;
-            }
+            let inv = 1.0 / k as f64;
+            aux[SIN * len + k] = ss * inv;
+            aux[COS * len + k] = -cc * inv;
+            aux[SIN2 * len + k] = 2.0 * ss2 * inv;
+            aux[COS2 * len + k] = -2.0 * cc2 * inv;
         }
-        for k in 0..=order {
-            for i in 0..n {
-                coeffs[k * n + i] = x[i * len + k];
-            }
+        let at = |q: usize| &aux[q * len..q * len + k + 1];
+        // ωₖ, linear in Π with coefficients affine in sin 2α, cos 2α.
+        let (px, py, pz) = (xs(pi), xs(pi + 1), xs(pi + 2));
+        let (s2, c2) = (at(SIN2), at(COS2));
+        let wx = a0 * px[k] + a1 * (cauchy(c2, px, k) + cauchy(s2, py, k));
+        let wy = a0 * py[k] + a1 * (cauchy(s2, px, k) - cauchy(c2, py, k));
+        let wz = (pz[k] - xs(p)[k]) / eq.jn;
+        aux[WX * len + k] = wx;
+        aux[WY * len + k] = wy;
+        aux[WZ * len + k] = wz;
+        let at = |q: usize| &aux[q * len..q * len + k + 1];
+        let (wx, wy) = (at(WX), at(WY));
+        let dk = cauchy(wx, wx, k) - cauchy(wy, wy, k);
+        let wk = cauchy(wx, wy, k);
+        aux[D * len + k] = dk;
+        aux[W * len + k] = wk;
+        let at = |q: usize| &aux[q * len..q * len + k + 1];
+        let (wx, wy, wz) = (at(WX), at(WY), at(WZ));
+        let scale = 1.0 / (k + 1) as f64;
+        let mut next = [0.0; N_REDUCED];
+        // Γ̇ = Γ × ω.
+        let (gx, gy, gz) = (xs(g[0]), xs(g[1]), xs(g[2]));
+        next[g[0]] = cauchy(gy, wz, k) - cauchy(gz, wy, k);
+        next[g[1]] = cauchy(gz, wx, k) - cauchy(gx, wz, k);
+        next[g[2]] = cauchy(gx, wy, k) - cauchy(gy, wx, k);
+        // Π̇ = Π × ω + k (−Γ_z s, Γ_z c, G), G = Γ_x s − Γ_y c.
+        let (s, c) = (at(SIN), at(COS));
+        let gg = cauchy(gx, s, k) - cauchy(gy, c, k);
+        next[pi] = cauchy(py, wz, k) - cauchy(pz, wy, k) - eq.k * cauchy(gz, s, k);
+        next[pi + 1] = cauchy(pz, wx, k) - cauchy(px, wz, k) + eq.k * cauchy(gz, c, k);
+        next[pi + 2] = cauchy(px, wy, k) - cauchy(py, wx, k) + eq.k * gg;
+        // α̇ = p/μ − ω_z; ṗ = μ (S D/2 − C W) + k G.
+        next[alpha] = xs(p)[k] / eq.mu - wz[k];
+        next[p] =
+            eq.mu * (0.5 * cauchy(at(SIN2), at(D), k) - cauchy(at(COS2), at(W), k)) + eq.k * gg;
+        for (i, v) in next.iter().enumerate() {
+            x[i * len + k + 1] = v * scale;
         }
-        check_finite(coeffs, n, order)
+    }
+    for k in 0..=order {
+        for i in 0..N_REDUCED {
+            coeffs[k * N_REDUCED + i] = x[i * len + k];
+        }
+    }
+    check_finite(coeffs, N_REDUCED, order)
+}
+
+/// The recursion on the full model, stage by stage element-wise (module doc), the
+/// coefficients written in place order by order.
+#[inline(always)]
+fn full(
+    eq: &EulerPoissonHoop,
+    work: &mut FullWork,
+    x0: &[f64],
+    order: usize,
+    coeffs: &mut [f64],
+) -> Result<(), TaylorError> {
+    const N: usize = N_FULL;
+    coeffs[..N].copy_from_slice(&x0[..N]);
+    work.reserve(order);
+    let half_mu = 0.5 * eq.mu;
+    let (a0, a1) = ((eq.jd + half_mu) * eq.inv_det, half_mu * eq.inv_det);
+    let (sin, cos) = x0[FULL_ALPHA].sin_cos();
+    let (sin2, cos2) = (2.0 * x0[FULL_ALPHA]).sin_cos();
+    let mut trig = [sin, cos, sin2, cos2];
+    for k in 0..order {
+        let x = &coeffs[k * N..(k + 1) * N];
+        if k > 0 {
+            // k sₖ = Σⱼ₌₁ᵏ j αⱼ cₖ₋ⱼ, k cₖ = −Σⱼ₌₁ᵏ j αⱼ sₖ₋ⱼ; twice that for 2α.
+            let u = k as f64 * x[FULL_ALPHA];
+            work.trig.set_left(k, [u; 4], [0.0; 4]);
+            let t = work.trig.sum(1, k);
+            let inv = 1.0 / k as f64;
+            trig = [t[0] * inv, -t[1] * inv, 2.0 * t[2] * inv, -2.0 * t[3] * inv];
+        }
+        let [sin, cos, sin2, cos2] = trig;
+        work.trig.set_right(k, [cos, sin, cos2, sin2], [0.0; 4]);
+        // ωₖ, linear in Π with coefficients affine in sin 2α, cos 2α.
+        let (px, py, pz) = (x[FULL_PI], x[FULL_PI + 1], x[FULL_PI + 2]);
+        work.omega
+            .set(k, [cos2, sin2], [sin2, cos2], [px, px], [-py, py]);
+        let o = work.omega.sum(0, k);
+        let omega = [
+            a0 * px + a1 * o[0],
+            a0 * py + a1 * o[1],
+            (pz - x[FULL_P_ALPHA]) / eq.jn,
+        ];
+        let [wx, wy, wz] = omega;
+        work.dw.set(k, [wx, wx], [wy, 0.0], [wx, wy], [wy, 0.0]);
+        let [dk, wk] = work.dw.sum(0, k);
+        // Γ = (x₂, x₅, x₈), the third row of R.
+        let (gx, gy, gz) = (x[2], x[5], x[8]);
+        let mut first = [0.0; 16];
+        let mut second = [0.0; 16];
+        let mut w_first = [0.0; 16];
+        let mut w_second = [0.0; 16];
+        for i in 0..12 {
+            first[i] = x[PATTERN.first[i]];
+            second[i] = x[PATTERN.second[i]];
+            w_first[i] = omega[PATTERN.w_first[i]];
+            w_second[i] = omega[PATTERN.w_second[i]];
+        }
+        first[12..].copy_from_slice(&[gz, gz, gx, sin2]);
+        second[12..].copy_from_slice(&[0.0, 0.0, gy, cos2]);
+        w_first[12..].copy_from_slice(&[sin, cos, sin, 0.5 * dk]);
+        w_second[12..].copy_from_slice(&[0.0, 0.0, cos, wk]);
+        work.main.set(k, first, second, w_first, w_second);
+        let sums = work.main.sum(0, k);
+        let (p_alpha, scale) = (x[FULL_P_ALPHA], 1.0 / (k + 1) as f64);
+        let next = &mut coeffs[(k + 1) * N..(k + 2) * N];
+        // Ṙ = R hat(ω) row by row.
+        for i in 0..9 {
+            next[i] = sums[i] * scale;
+        }
+        // Π̇ = Π × ω + k (−Γ_z s, Γ_z c, G).
+        next[FULL_PI] = (sums[9] - eq.k * sums[GZ_SIN]) * scale;
+        next[FULL_PI + 1] = (sums[10] + eq.k * sums[GZ_COS]) * scale;
+        next[FULL_PI + 2] = (sums[11] + eq.k * sums[G]) * scale;
+        // α̇ = p/μ − ω_z; ṗ = μ (S D/2 − C W) + k G.
+        next[FULL_ALPHA] = (p_alpha / eq.mu - wz) * scale;
+        next[FULL_P_ALPHA] = (eq.mu * sums[SD_CW] + eq.k * sums[G]) * scale;
+    }
+    check_finite(coeffs, N, order)
+}
+
+/// [`full`] compiled for the instruction set `pulp` finds at run time (inlined into its
+/// target-feature function, so that the element-wise passes use the widest vectors).
+struct Full<'a> {
+    eq: &'a EulerPoissonHoop,
+    work: &'a mut FullWork,
+    x0: &'a [f64],
+    order: usize,
+    coeffs: &'a mut [f64],
+}
+
+impl pulp::WithSimd for Full<'_> {
+    type Output = Result<(), TaylorError>;
+    #[inline(always)]
+    fn with_simd<V: pulp::Simd>(self, _: V) -> Self::Output {
+        full(self.eq, self.work, self.x0, self.order, self.coeffs)
     }
 }
 
@@ -361,5 +504,22 @@ mod tests {
             .coefficients(0.0, &x0, 2, &mut c)
             .unwrap_err();
         assert!(matches!(e, TaylorError::NonFinite { order: 0, .. }), "{e}");
+        // The full model alike, the NaN in Π_x (component 9).
+        let mut x0 = [0.0; 14];
+        x0[9] = f64::NAN;
+        let mut c = vec![0.0; 3 * 14];
+        let e = TaylorHoop::full(eq)
+            .coefficients(0.0, &x0, 2, &mut c)
+            .unwrap_err();
+        assert!(
+            matches!(
+                e,
+                TaylorError::NonFinite {
+                    order: 0,
+                    component: 9
+                }
+            ),
+            "{e}"
+        );
     }
 }
