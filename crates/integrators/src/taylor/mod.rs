@@ -370,15 +370,16 @@ impl<Y: crate::VectorState> TaylorStepper<Y> {
     }
 
     /// `y ← Σₖ xₖ hᵏ` from `coeffs` (Horner; a multiply and an add, not `f64::mul_add`,
-    /// a library call on x86-64 without FMA).
+    /// a library call on x86-64 without FMA), all components at once order by order: each
+    /// component's operations are those of its own Horner sum, in the same order.
     fn sum(coeffs: &[f64], n: usize, p: u32, h: f64, out: &mut [f64]) {
         let p = p as usize;
-        for i in 0..n {
-            let mut s = coeffs[p * n + i];
-            for k in (0..p).rev() {
-                s = s * h + coeffs[k * n + i];
+        let out = &mut out[..n];
+        out.copy_from_slice(&coeffs[p * n..(p + 1) * n]);
+        for k in (0..p).rev() {
+            for (s, c) in out.iter_mut().zip(&coeffs[k * n..(k + 1) * n]) {
+                *s = *s * h + c;
             }
-            out[i] = s;
         }
     }
 

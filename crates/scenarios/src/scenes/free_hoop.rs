@@ -402,20 +402,27 @@ pub static FREE_HOOP: SceneInfo = SceneInfo {
 
 /// Which method for what on `free-hoop`; the measurements behind it are data
 /// (`crate::recommendation`), written by `tumble work-precision free-hoop --recommend`.
-static FREE_HOOP_RECOMMENDED: [Recommendation; 3] = [
+static FREE_HOOP_RECOMMENDED: [Recommendation; 4] = [
     Recommendation {
         purpose: "error 1e-4 … 1e-8 at t = 10 s",
         integrators: &["vern8"],
         measure: Measure::ToError(1e-8),
-        compared_with: &["dop853"],
+        compared_with: &["dop853", "taylor"],
         reason: "",
     },
     Recommendation {
         purpose: "error 1e-8 … 1e-12",
-        integrators: &["vern9", "vern8"],
+        integrators: &["taylor", "vern9"],
         measure: Measure::ToError(1e-12),
-        compared_with: &["dop853"],
-        reason: "",
+        compared_with: &["vern8", "dop853"],
+        reason: "taylor: order and step from the tolerance, coefficients by recursion, no stages",
+    },
+    Recommendation {
+        purpose: "error 1e-12 … 1e-14",
+        integrators: &["taylor"],
+        measure: Measure::ToError(1e-14),
+        compared_with: &["vern9"],
+        reason: "order and step from the tolerance, coefficients by recursion, no stages",
     },
     Recommendation {
         purpose: "energy over 10^6 steps and more",

@@ -317,9 +317,9 @@ static FREE_BODY_RECOMMENDED: [Recommendation; 4] = [
     },
     Recommendation {
         purpose: "a general method, error 1e-8 … 1e-12",
-        integrators: &["vern8", "vern9"],
+        integrators: &["vern9", "vern8"],
         measure: Measure::ToError(1e-12),
-        compared_with: &["dop853"],
+        compared_with: &["dop853", "taylor"],
         reason: "",
     },
     Recommendation {
@@ -676,20 +676,27 @@ pub static HEAVY_TOP: SceneInfo = SceneInfo {
 
 /// Which method for what on `heavy-top`; the measurements behind it are data
 /// (`crate::recommendation`), written by `tumble work-precision heavy-top --recommend`.
-static HEAVY_TOP_RECOMMENDED: [Recommendation; 3] = [
+static HEAVY_TOP_RECOMMENDED: [Recommendation; 4] = [
     Recommendation {
         purpose: "error 1e-4 … 1e-8 at t = 10 s",
         integrators: &["split-exact8", "vern8"],
         measure: Measure::ToError(1e-8),
-        compared_with: &["dop853"],
+        compared_with: &["dop853", "taylor"],
         reason: "kicks around the exact free flow: only gravity's part has an error",
     },
     Recommendation {
         purpose: "error 1e-8 … 1e-12",
-        integrators: &["split-exact8", "vern9"],
+        integrators: &["taylor", "split-exact8"],
         measure: Measure::ToError(1e-12),
-        compared_with: &["dop853"],
-        reason: "kicks around the exact free flow: only gravity's part has an error",
+        compared_with: &["vern9", "dop853"],
+        reason: "taylor: order and step from the tolerance, coefficients by recursion, no stages",
+    },
+    Recommendation {
+        purpose: "error 1e-12 … 1e-14",
+        integrators: &["taylor"],
+        measure: Measure::ToError(1e-14),
+        compared_with: &["split-exact8", "vern9"],
+        reason: "order and step from the tolerance, coefficients by recursion, no stages",
     },
     Recommendation {
         purpose: "energy over 10^6 steps and more",
