@@ -32,6 +32,10 @@ fn an_animation_has_one_frame_per_output_time() {
         ("dzhanibekov", "t-handle.gif"),
         ("models/gyroscope-gimbals.toml", "gimbals.gif"),
         ("models/double-pendulum.toml", "pendulum.gif"),
+        (
+            "models/double-spherical-pendulum-so3.toml",
+            "two-bodies.gif",
+        ),
     ] {
         let scene = if scene.ends_with(".toml") {
             crate::support::root().join(scene).display().to_string()

@@ -23,8 +23,8 @@
 //! angles = ["spin", "pi/2", "0"]             # ... or: rotations = [["z", "phi"], ["x", "theta"]]
 //! parent = "ring"                            # optional: turns with another frame (gimbals)
 //!
-//! [frames.body]                              # an orientation integrated on SO(3)
-//! orientation = "so3"                        # R and ω are state: no angles, no gimbal lock
+//! [frames.body]                              # an orientation integrated on SO(3) (up to 4
+//! orientation = "so3"                        # frames): R and ω are state, no gimbal lock
 //! angles = ["0", "theta0", "0"]              # the initial orientation (or `rotations`)
 //! omega = ["0", "0", "spin0"]                # the initial body angular velocity
 //! # expressions read body_R11 … body_R33, and body_omega_x … where rates are in scope
@@ -96,9 +96,10 @@ use crate::units;
 pub const MAX_FILE_BYTES: usize = 1 << 20;
 /// The most generalized coordinates a model may have.
 pub const MAX_COORDINATES: usize = 6;
-/// The most frames integrated on SO(3) a model may have.
-pub const MAX_SO3_FRAMES: usize = 1;
-/// The most scalar coordinates beside an orientation on SO(3).
+/// The most frames integrated on SO(3) a model may have (each adds twelve numbers to the
+/// state: its rotation matrix and its body angular velocity).
+pub const MAX_SO3_FRAMES: usize = 4;
+/// The most scalar coordinates beside orientations on SO(3).
 pub const MAX_COORDINATES_WITH_SO3: usize = 3;
 /// The most nodes a model's expressions and derivatives may grow to.
 pub const MAX_NODES: usize = 200_000;
@@ -255,12 +256,13 @@ impl Model {
         }
 
         // Orientations on SO(3): counted first, their inputs come before the rates.
-        let so3_frames: Vec<(Spanned<String>, Spanned<String>)> = raw
+        let mut so3_frames: Vec<(Spanned<String>, Spanned<String>)> = raw
             .frames
             .iter()
             .flatten()
             .filter_map(|(name, f)| f.get_ref().orientation.clone().map(|o| (name.clone(), o)))
             .collect();
+        so3_frames.sort_by_key(|(name, _)| name.span().start);
         for (name, o) in &so3_frames {
             if o.get_ref() != "so3" {
                 return Err(src.invalid(
@@ -274,14 +276,11 @@ impl Model {
             }
         }
         if so3_frames.len() > MAX_SO3_FRAMES {
-            return Err(src.invalid(
-                &so3_frames[MAX_SO3_FRAMES].0.span(),
-                "frames",
-                format!(
-                    "{} frames with orientation = \"so3\": a model may have at most {MAX_SO3_FRAMES}; give the others by `angles` or `rotations`",
-                    so3_frames.len()
-                ),
-            ));
+            let names: Vec<_> = so3_frames
+                .iter()
+                .map(|(n, _)| format!("`{}`", n.get_ref()))
+                .collect();
+            return Err(src.invalid(&so3_frames[MAX_SO3_FRAMES].0.span(), "frames", format!("{} frames with orientation = \"so3\" ({}): a model may have at most {MAX_SO3_FRAMES}; give the others by `angles` or `rotations`", names.len(), names.join(", "))));
         }
 
         // Coordinates.
@@ -304,7 +303,7 @@ impl Model {
                 "coordinates",
                 format!(
                     "{} coordinates: a model may have at most {MAX_COORDINATES}, or \
-                     {MAX_COORDINATES_WITH_SO3} beside an orientation on SO(3)",
+                     {MAX_COORDINATES_WITH_SO3} beside an orientation on SO(3) (or several)",
                     coordinates.len()
                 ),
             ));

@@ -10,8 +10,8 @@
 //! `qₖ₊₁ = q̇ₖ/(k+1)`. Time is the series `t₀ + h`. Nothing is allocated per expansion once the
 //! storage holds the run's order.
 //!
-//! A model with an orientation on SO(3) has the state `y = (q, R, q̇, ω)` (the rotation matrix
-//! by rows) and the first-order tape of `y' = F(t, y)` ([`crate::mechanics::first_order`]:
+//! A model with orientations on SO(3) has the state `y = (q, R₁ … R_k, q̇, ω₁ … ω_k)` (each
+//! rotation matrix by rows) and the first-order tape of `y' = F(t, y)` ([`crate::mechanics::first_order`]:
 //! the kinematics `q' = q̇`, `Ṙ = R ω̂`, and `v̇ = M⁻¹ f` by a Cholesky factorization written
 //! on the graph). Its coefficients are those of the tape itself: one pass at order `k` gives
 //! `[F(t, y(t))]ₖ` and `yₖ₊₁ = [F]ₖ/(k+1)` (Jorba & Zou 2005, §3), the square roots and

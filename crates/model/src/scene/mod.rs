@@ -2,8 +2,9 @@
 //! command, sweep and study that runs a built-in scene runs a model file, with the methods of
 //! the first-order kind ([`ProblemKind::Ode`]: the explicit pairs, `rk4`, Gauss–Legendre and
 //! its compositions) and the Taylor methods ([`ProblemKind::TaylorSeries`]: coefficients by
-//! automatic differentiation on the tape, [`crate::taylor`]; on a model with an orientation on
-//! SO(3), on the tape of its first-order system, the rotation matrix a point of ℝ⁹).
+//! automatic differentiation on the tape, [`crate::taylor`]; on a model with orientations on
+//! SO(3), up to [`crate::file::MAX_SO3_FRAMES`], on the tape of its first-order system, each
+//! rotation matrix a point of ℝ⁹).
 //!
 //! The state is `(q, q̇)`; each evaluation of the right-hand side runs one instruction tape
 //! ([`crate::expr::tape`]) in a workspace allocated once per run: the forces, the kinematics
@@ -24,7 +25,8 @@
 //! [`Scene`]; [`ode`] is the first-order right-hand side `M q̈ = f` ([`ModelOde`]) and the
 //! conditioning check; [`run`] routes a run to the method's kind of problem; `on_group` runs
 //! the Lie-group methods on a model with one orientation on SO(3) (the kinds it offers, the
-//! rigid and coupled bodies); `display` shows a state in rows (quaternions) and reads it back.
+//! rigid and coupled bodies; a model with several runs the first-order kinds only: those
+//! methods step on one rotation group); `display` shows a state in rows (quaternions) and reads it back.
 
 use std::collections::HashMap;
 use std::path::Path;
@@ -382,7 +384,9 @@ impl Scene for ModelScene {
                 message: format!("{what} is {} at these parameters", y0[i]),
             });
         }
-        // One size per state length (at most 6 coordinates, or 3 beside an orientation).
+        // One size per state length: `2n` for `n ≤ 6` scalar coordinates, `2n + 12` beside one
+        // orientation on SO(3) (`n ≤ 3`), which the Lie-group methods may run too, and
+        // `2n + 12k` beside `k = 2 … 4` of them, which only the vector-space methods run.
         match self.model.layout.state_len() {
             2 => self.run::<2>(params, plan, &y0, recorder),
             4 => self.run::<4>(params, plan, &y0, recorder),
@@ -392,7 +396,27 @@ impl Scene for ModelScene {
             12 => self.run::<12>(params, plan, &y0, recorder),
             14 => self.run::<14>(params, plan, &y0, recorder),
             16 => self.run::<16>(params, plan, &y0, recorder),
-            _ => self.run::<18>(params, plan, &y0, recorder),
+            18 => self.run::<18>(params, plan, &y0, recorder),
+            24 => self.run_flat::<24>(params, plan, &y0, recorder),
+            26 => self.run_flat::<26>(params, plan, &y0, recorder),
+            28 => self.run_flat::<28>(params, plan, &y0, recorder),
+            30 => self.run_flat::<30>(params, plan, &y0, recorder),
+            36 => self.run_flat::<36>(params, plan, &y0, recorder),
+            38 => self.run_flat::<38>(params, plan, &y0, recorder),
+            40 => self.run_flat::<40>(params, plan, &y0, recorder),
+            42 => self.run_flat::<42>(params, plan, &y0, recorder),
+            48 => self.run_flat::<48>(params, plan, &y0, recorder),
+            50 => self.run_flat::<50>(params, plan, &y0, recorder),
+            52 => self.run_flat::<52>(params, plan, &y0, recorder),
+            54 => self.run_flat::<54>(params, plan, &y0, recorder),
+            other => Err(SceneError::ModelRefused {
+                model: self.info.name.to_string(),
+                message: format!(
+                    "a state of {other} numbers is beyond what a model may have \
+                     ({} coordinates, {} orientations on SO(3))",
+                    self.model.layout.n, self.model.layout.so3
+                ),
+            }),
         }
     }
 }

@@ -1,4 +1,5 @@
-//! The Lie-group methods on a model with one orientation on SO(3): the kinds of problem it
+//! The Lie-group methods on a model with one orientation on SO(3) (a model with several is
+//! refused, saying why and which methods run it): the kinds of problem it
 //! offers (as `free-body`, `heavy-top` or `free-hoop`, and the Taylor series of its
 //! first-order system), the model as a rigid body or a rigid
 //! body coupled to its scalar coordinates ([`crate::group`]), and the runs of those, whose rows
@@ -53,7 +54,21 @@ pub(super) fn group_problems(
              `orientation = \"so3\"`)"
                 .into()
         } else {
-            "the Lie-group methods take one orientation on SO(3)".into()
+            let names: Vec<String> = model
+                .orientations
+                .iter()
+                .map(|o| format!("`{}`", o.name))
+                .collect();
+            format!(
+                "the Lie-group methods step on one rotation group (SO(3), or SO(3) × R^n beside \
+                 scalar coordinates), and model `{}` has {} orientations on SO(3) ({}), a state \
+                 on their product, which they do not integrate; the vector-space methods (the \
+                 explicit pairs, Gauss–Legendre, taylor) run it, each rotation matrix as nine \
+                 numbers",
+                model.name,
+                names.len(),
+                names.join(", ")
+            )
         });
     };
     let template = inputs_at(model, model.params.iter().map(|p| p.default));

@@ -6,6 +6,7 @@ mod expr;
 mod fuzz;
 mod lie;
 mod models;
+mod multi_so3;
 mod native;
 mod so3;
 mod support;

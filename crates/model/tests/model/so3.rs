@@ -174,7 +174,14 @@ fn mistakes_in_an_so3_frame_are_refused_with_what_to_write() {
         (
             "[frames.a]\norientation = \"so3\"\n[frames.b]\norientation = \"so3\"\nparent = \"a\"",
             one,
-            "at most 1",
+            "`frames.b.parent`: an orientation on SO(3) turns in the model frame; leave `parent` out",
+        ),
+        (
+            "[frames.a]\norientation = \"so3\"\n[frames.b]\norientation = \"so3\"\n\
+             [frames.c]\norientation = \"so3\"\n[frames.d]\norientation = \"so3\"\n\
+             [frames.e]\norientation = \"so3\"",
+            one,
+            "5 frames with orientation = \"so3\" (`a`, `b`, `c`, `d`, `e`): a model may have at most 4",
         ),
         (
             "[frames.a]\norientation = \"so3\"\n[frames.b]\nangles = [\"x\", \"0\", \"0\"]\nparent = \"a\"",
