@@ -2,7 +2,7 @@
 //!
 //! A run's record and a study's rows are handed to Python as the JSON of the same types the
 //! command line writes (`tumble_studies::record::RunRecord`,
-//! `tumble_studies::work_precision::record::RungRecord`), so their names cannot drift.
+//! `tumble_studies::work_precision::Rung`), so their names cannot drift.
 
 use std::time::Instant;
 
@@ -20,7 +20,7 @@ use tumble_studies::simulation::{
     DEFAULT_ENERGY_WARN, Interruptible, LoadedScene, Naming, ParamOverride, RunRequest,
     failure_message, flag_words, load_scene, number,
 };
-use tumble_studies::work_precision::record::RungRecord;
+use tumble_studies::work_precision::Rung;
 use tumble_studies::work_precision::{self as ladders, Config};
 
 use crate::{SimulationError, f64_bytes, interruptible, refused};
@@ -295,8 +295,8 @@ pub(crate) fn work_precision<'py>(
     out.set_item("reference", &reference.method)?;
     out.set_item("cross_check", &reference.check)?;
     out.set_item("agreement", reference.agreement)?;
-    out.set_item("columns", RungRecord::COLUMNS.to_vec())?;
-    let rungs = serde_json::to_string(&RungRecord::of(&ladders)).map_err(refused)?;
+    out.set_item("columns", Rung::COLUMNS.to_vec())?;
+    let rungs = serde_json::to_string(&Rung::of(&ladders)).map_err(refused)?;
     out.set_item("rungs", rungs)?;
     let stops = PyDict::new(py);
     for l in &ladders {

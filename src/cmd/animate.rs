@@ -114,8 +114,12 @@ pub fn run(args: &Args) -> Result<()> {
         }
         let path = std::path::Path::new(&args.target.scene);
         let (record_path, record) = tumble_plot::saved::run_record(path)?;
-        let (scene, params) =
-            tumble_plot::saved::scene_of(&record.scene, &record.parameters, &record_path)?;
+        let (scene, params) = tumble_plot::saved::recorded_scene(
+            &record.scene,
+            &record.origin,
+            &record.parameters,
+            &record_path,
+        )?;
         let drawing = super::view::drawing_of(None, scene, &params)?;
         let saved = tumble_plot::saved::read_columns(path)?;
         (scene, params, Some((saved, record)), drawing)

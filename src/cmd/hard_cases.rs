@@ -13,13 +13,12 @@
 use std::path::PathBuf;
 
 use anyhow::{Result, bail};
-use serde::Serialize;
 use tumble_integrators::registry;
 use tumble_studies::hard_cases::Case;
 use tumble_studies::hard_cases::atlas::{self, AtlasConfig, AtlasReport, Method, Status};
+use tumble_studies::hard_cases::record::AtlasRecord;
 
 use crate::output;
-use crate::provenance::Provenance;
 use crate::signals;
 use tumble_plot as plot;
 use tumble_plot::atlas::{Atlas, AtlasCase};
@@ -93,39 +92,6 @@ impl std::fmt::Display for Unfinished {
 }
 
 impl std::error::Error for Unfinished {}
-
-#[derive(Serialize)]
-struct CaseJson<'a> {
-    name: &'a str,
-    origin: &'a str,
-    scene: &'static str,
-    parameters: String,
-    /// The case's property bounds the final-state error (its atlas cell is coloured by it,
-    /// else by the relative energy error).
-    bounds_error: bool,
-    t_end: f64,
-    why: &'a str,
-    good: &'a str,
-    reference: Option<&'a String>,
-}
-
-#[derive(Serialize)]
-struct Manifest<'a> {
-    command: &'static str,
-    rule: String,
-    cases: Vec<CaseJson<'a>>,
-    /// The atlas's rows, as given (`NAME` or `NAME:dt=H`).
-    methods: Vec<String>,
-    entries: usize,
-    finished: usize,
-    resumed: usize,
-    counts: std::collections::BTreeMap<&'static str, usize>,
-    budget_s: f64,
-    run_seconds: f64,
-    wall_time_s: f64,
-    files: Vec<&'static str>,
-    provenance: Provenance,
-}
 
 /// Runs the subcommand.
 ///
@@ -298,44 +264,14 @@ fn write_outputs(
     for name in ["atlas.png", "atlas.svg"] {
         plot::save(&figure, &dir.join(name))?;
     }
-    let mut counts = std::collections::BTreeMap::new();
-    for e in &report.entries {
-        *counts.entry(e.status.name()).or_insert(0) += 1;
-    }
-    let manifest = Manifest {
-        command: "hard-cases",
-        rule: format!(
-            "each method at the step (adaptive: tolerance) that gives it an error of {:e} at the \
-             horizon of the case's easy twin (the scene's default step or tolerance 1e-8 scaled \
-             by (1e-6/e)^(1/p), up to six runs; the largest setting within 3e-6 kept); the exact \
-             flow at the scene's default step; a setting given with the method replaces the rule",
-            atlas::TARGET
-        ),
-        cases: cases
-            .iter()
-            .map(|c| CaseJson {
-                name: &c.name,
-                origin: &c.origin,
-                scene: c.scene.info().name,
-                parameters: atlas::parameters_text(c),
-                bounds_error: c.property.error.is_some(),
-                t_end: c.t_end,
-                why: &c.why,
-                good: &c.good,
-                reference: report.references.get(&c.name),
-            })
-            .collect(),
-        methods: methods.iter().map(Method::spec).collect(),
-        entries: report.total,
-        finished: report.entries.len(),
-        resumed: report.resumed,
-        counts,
-        budget_s: args.budget,
-        run_seconds: args.run_seconds,
-        wall_time_s: report.seconds,
-        files: vec!["atlas.csv", "atlas.png", "atlas.svg", atlas::JOURNAL],
-        provenance: crate::provenance::now(threads),
-    };
+    let manifest = AtlasRecord::new(
+        crate::provenance::now(threads),
+        cases,
+        methods,
+        report,
+        args.budget,
+        args.run_seconds,
+    );
     output::write_whole(
         &dir.join("manifest.json"),
         serde_json::to_string_pretty(&manifest)?.as_bytes(),

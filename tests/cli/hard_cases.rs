@@ -3,7 +3,7 @@
 
 use tempfile::TempDir;
 
-use crate::support::{stderr, succeeds, tumble_in};
+use crate::support::{record, stderr, succeeds, tumble_in};
 
 fn read(path: &std::path::Path) -> String {
     std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
@@ -47,7 +47,7 @@ fn an_atlas_writes_its_csv_figure_and_manifest_and_records_failures_as_results()
         bad.contains(",given,") && (bad.contains(",violated,") || bad.contains(",failed,")),
         "{bad}"
     );
-    let m: serde_json::Value = serde_json::from_str(&read(&dir.join("manifest.json"))).unwrap();
+    let m = record::<tumble_studies::hard_cases::record::AtlasRecord>(&dir.join("manifest.json"));
     assert_eq!(m["entries"], 4);
     assert_eq!(m["finished"], 4);
     assert!(m["rule"].as_str().unwrap().contains("easy twin"));

@@ -6,7 +6,7 @@ use std::path::Path;
 
 use tempfile::TempDir;
 
-use crate::support::{stderr, succeeds, tumble_in};
+use crate::support::{root, stderr, succeeds, tumble_in};
 use crate::sweep::{small, write_sweep};
 
 fn read(path: &Path) -> String {
@@ -50,6 +50,55 @@ fn plot_redraws_a_simulation_csv_as_simulate_drew_it() {
     // The column's legend entry is its symbol.
     assert!(alpha.contains(">\nα\n</text>"), "no α");
     assert!(!alpha.contains("relative energy error"));
+}
+
+/// A run of a model file: its record names the file, which `tumble plot` reads again for the
+/// model's columns and symbols; the figure is the PNG `simulate --plot` drew, byte for byte.
+/// With the file gone, the error names it.
+#[test]
+fn plot_redraws_a_model_runs_csv_as_simulate_drew_it() {
+    let tmp = TempDir::new().unwrap();
+    let dir = tmp.path();
+    std::fs::copy(
+        root().join("models/free-hoop-euler.toml"),
+        dir.join("hoop.toml"),
+    )
+    .unwrap();
+    succeeds(
+        dir,
+        &[
+            "simulate",
+            "hoop.toml",
+            "--t-end",
+            "1",
+            "-o",
+            "run.csv",
+            "--plot",
+            "cmd.png",
+        ],
+    );
+    succeeds(dir, &["plot", "run.csv", "-o", "again.png"]);
+    let drawn = std::fs::read(dir.join("cmd.png")).unwrap();
+    assert!(drawn.starts_with(b"\x89PNG"), "not a PNG");
+    assert_eq!(drawn, std::fs::read(dir.join("again.png")).unwrap());
+    // The model's own coordinate, by name.
+    succeeds(
+        dir,
+        &["plot", "run.csv", "--columns", "theta", "-o", "theta.svg"],
+    );
+    assert!(
+        read(&dir.join("theta.svg")).contains(">\nθ\n</text>"),
+        "no θ"
+    );
+    std::fs::rename(dir.join("hoop.toml"), dir.join("moved.toml")).unwrap();
+    let out = tumble_in(dir, &["plot", "run.csv", "-o", "gone.png"]);
+    assert!(!out.status.success());
+    let err = stderr(&out);
+    assert!(
+        err.contains("run.csv.json") && err.contains("hoop.toml") && err.contains("not a file"),
+        "{err}"
+    );
+    assert!(!dir.join("gone.png").exists());
 }
 
 #[test]

@@ -4,7 +4,7 @@
 
 use tempfile::TempDir;
 
-use crate::support::{stderr, succeeds, tumble_in};
+use crate::support::{record, stderr, succeeds, tumble_in};
 use crate::sweep::write_sweep;
 
 /// A free-hoop map over 2 s, 17 × 15 points, refined by `max_tilt` (2 levels; `--refine`
@@ -38,7 +38,7 @@ fn a_refined_map_states_its_levels_and_matches_the_uniform_grid_at_its_points() 
     assert!(results.starts_with("index,level,omega0,alpha0,max_tilt,final_tilt,status,reason\n"));
     let rows = results.lines().count() - 1;
     assert!(rows > 25 && rows < 255, "{rows} points");
-    let m: serde_json::Value = serde_json::from_str(&read(&dir.join("manifest.json"))).unwrap();
+    let m = record::<tumble_studies::sweep::record::SweepRecord>(&dir.join("manifest.json"));
     let r = &m["refinement"];
     assert_eq!(r["levels"], 2);
     assert_eq!(r["grid_points"], 255);

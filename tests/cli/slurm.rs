@@ -47,7 +47,7 @@ fn read(path: &Path) -> String {
 }
 
 fn manifest(dir: &Path) -> serde_json::Value {
-    serde_json::from_str(&read(&dir.join("manifest.json"))).expect("manifest.json is JSON")
+    crate::support::record::<tumble_studies::sweep::record::SweepRecord>(&dir.join("manifest.json"))
 }
 
 #[test]

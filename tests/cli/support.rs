@@ -1,5 +1,6 @@
 //! What every module of the binary's tests needs: the repository root, running `tumble` in a
-//! folder, its stderr, a run that must succeed, and a run interrupted by a signal.
+//! folder, its stderr, a run that must succeed, a record read through its type, and a run
+//! interrupted by a signal.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
@@ -29,6 +30,25 @@ pub fn succeeds(dir: &Path, args: &[&str]) -> Output {
     let out = tumble_in(dir, args);
     assert!(out.status.success(), "{args:?} failed: {}", stderr(&out));
     out
+}
+
+/// The JSON record at `path`, read as its type `T` (so every reader of the type can read what
+/// the command wrote) and returned as a JSON value: `T` must hold every key, as written.
+pub fn record<T>(path: &Path) -> serde_json::Value
+where
+    T: serde::Serialize + serde::de::DeserializeOwned,
+{
+    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let typed: T = serde_json::from_str(&text)
+        .unwrap_or_else(|e| panic!("{} is not its record type: {e}", path.display()));
+    let value: serde_json::Value = serde_json::from_str(&text).expect("a record is JSON");
+    assert_eq!(
+        serde_json::to_value(&typed).unwrap(),
+        value,
+        "{}: the record type does not hold every key as written",
+        path.display()
+    );
+    value
 }
 
 /// Waits until `ready()`, failing after 60 s.

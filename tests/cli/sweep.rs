@@ -53,7 +53,7 @@ pub(crate) fn write_sweep(dir: &Path, name: &str, text: &str) -> PathBuf {
 }
 
 fn manifest(dir: &Path) -> serde_json::Value {
-    serde_json::from_str(&read(&dir.join("manifest.json"))).expect("manifest.json is JSON")
+    crate::support::record::<tumble_studies::sweep::record::SweepRecord>(&dir.join("manifest.json"))
 }
 
 #[test]

@@ -73,8 +73,9 @@ fn work_precision_writes_csv_plots_and_manifest_with_a_ladder_per_integrator() {
             "{name}: {errors:?}"
         );
     }
-    let manifest: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(dir.join("manifest.json")).unwrap()).unwrap();
+    let manifest = crate::support::record::<tumble_studies::work_precision::record::StudyRecord>(
+        &dir.join("manifest.json"),
+    );
     assert_eq!(manifest["scene"], "free-body");
     // The double-double Taylor method, checked by the exact flow.
     assert!(
@@ -256,4 +257,24 @@ fn max_seconds_bounds_every_run_even_of_a_long_horizon() {
         start.elapsed()
     );
     assert!(!tmp.path().join("wp").exists());
+}
+
+/// `--max-seconds`'s help states the limits of the reference's runs and of the long runs as
+/// the library declares them.
+#[test]
+fn the_max_seconds_help_states_the_librarys_reference_and_long_run_factors() {
+    use tumble_studies::work_precision::{Config, LONG_FACTOR};
+    let tmp = TempDir::new().unwrap();
+    let out = tumble_in(tmp.path(), &["work-precision", "--help"]);
+    assert!(out.status.success());
+    let help = text(&out.stdout)
+        .split_whitespace()
+        .collect::<Vec<_>>()
+        .join(" ");
+    for stated in [
+        format!("limited to {} times this", Config::REFERENCE_FACTOR),
+        format!("each run of `--long` to {LONG_FACTOR} times"),
+    ] {
+        assert!(help.contains(&stated), "no `{stated}` in: {help}");
+    }
 }

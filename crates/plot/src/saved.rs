@@ -10,8 +10,12 @@
 //! | a long-run folder (`work-precision --long`) | `long.csv`, `manifest.json` | [`crate::work_precision::long_figure`] |
 //! | a hard-case atlas folder | `atlas.csv`, `manifest.json` | [`Atlas::of_entries`] |
 //!
+//! A record's scene is resolved by [`recorded_scene`]: a built-in scene by its name, a scene
+//! or model file (`simulate models/free-hoop-euler.toml -o FILE.csv`) by the path the record
+//! holds as its `origin`.
+//!
 //! `tumble plot` and Python's `tumble.plot` both call [`figure`]; `tumble animate` reads a
-//! saved run with [`run_record`] and [`read_columns`].
+//! saved run with [`run_record`], [`recorded_scene`] and [`read_columns`].
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -20,9 +24,12 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 use tumble_scenarios::{Params, Scene, scenes};
 use tumble_studies::hard_cases::atlas::{Entry, Method};
+use tumble_studies::hard_cases::record::AtlasRecord;
 use tumble_studies::record::RunRecord;
+use tumble_studies::simulation::{self, ParamOverride};
 use tumble_studies::sweep;
-use tumble_studies::work_precision::record::{RungRecord, StudyRecord};
+use tumble_studies::work_precision::Rung;
+use tumble_studies::work_precision::record::StudyRecord;
 
 use crate::atlas::{Atlas, AtlasCase};
 use crate::colour::ColourMap;
@@ -240,6 +247,54 @@ pub fn scene_of(
     Ok((scene, params))
 }
 
+/// The scene a record names, at its `parameters`: the built-in scene `name` when `origin` is
+/// `builtin`, else the scene or model file `origin` read again (a path as the command was
+/// given it, so relative to the folder it ran in), which must still declare `name`; a scene
+/// file no longer there falls back to the built-in scene of that name. `path` names the record
+/// in messages.
+///
+/// # Errors
+/// A file that is not there (for a scene that is not built in), no longer reads or declares
+/// another scene; an unknown scene or parameter, a value outside the parameter's domain.
+pub fn recorded_scene(
+    name: &str,
+    origin: &str,
+    parameters: &BTreeMap<String, f64>,
+    path: &Path,
+) -> Result<(&'static dyn Scene, Params)> {
+    let file = Path::new(origin);
+    if origin == simulation::BUILT_IN || (!file.is_file() && scenes::find(name).is_ok()) {
+        return scene_of(name, parameters, path);
+    }
+    if !file.is_file() {
+        return Err(PlotError::content(
+            path,
+            format!(
+                "the scene `{name}` came from {origin}, which is not a file here (the record \
+                 holds the path as the command was given it: run from the folder it ran in)"
+            ),
+        ));
+    }
+    let overrides: Vec<ParamOverride> = parameters
+        .iter()
+        .map(|(key, &value)| ParamOverride {
+            label: format!("parameter {key} = {value}"),
+            key: key.clone(),
+            value,
+        })
+        .collect();
+    let loaded = simulation::load_scene(origin, &overrides)
+        .map_err(|e| PlotError::content(path, format!("the run's scene file: {}", e.0)))?;
+    let declared = loaded.scene.info().name;
+    if declared != name {
+        return Err(PlotError::content(
+            path,
+            format!("{origin} declares the scene `{declared}` now; the run's was `{name}`"),
+        ));
+    }
+    Ok((loaded.scene, loaded.params))
+}
+
 /// The record `FILE.csv.json` that `simulate -o FILE.csv` writes beside its CSV, read, with
 /// its path.
 ///
@@ -267,7 +322,12 @@ pub fn run_record(csv_path: &Path) -> Result<(PathBuf, RunRecord)> {
 /// The figure of a run's CSV and its record.
 fn run_figure(csv_path: &Path, choice: &Choice) -> Result<StackedFigure> {
     let (record_path, record) = run_record(csv_path)?;
-    let (scene, params) = scene_of(&record.scene, &record.parameters, &record_path)?;
+    let (scene, params) = recorded_scene(
+        &record.scene,
+        &record.origin,
+        &record.parameters,
+        &record_path,
+    )?;
     let step = record
         .step()
         .map_err(|e| PlotError::content(&record_path, e.to_string()))?;
@@ -420,23 +480,18 @@ fn sweep_figure(dir: &Path, choice: &Choice) -> Result<AnyFigure> {
 fn work_precision_figure(dir: &Path) -> Result<StackedFigure> {
     let manifest_path = dir.join("manifest.json");
     let manifest: StudyRecord = read_json(&manifest_path)?;
-    let (scene, params) = scene_of(&manifest.scene, &manifest.parameters, &manifest_path)?;
+    let (scene, params) = recorded_scene(
+        &manifest.scene,
+        &manifest.origin,
+        &manifest.parameters,
+        &manifest_path,
+    )?;
     let csv_path = dir.join("work-precision.csv");
     let mut reader = csv_reader(&csv_path)?;
     let mut curves: Vec<Curve> = Vec::new();
-    for (i, row) in reader.deserialize::<RungRecord>().enumerate() {
+    for (i, row) in reader.deserialize::<Rung>().enumerate() {
         let row = row.map_err(row_error(&csv_path, i))?;
-        let order = row.order.as_str();
-        if !(matches!(order, "exact" | "variable") || order.parse::<u32>().is_ok()) {
-            return Err(PlotError::content(
-                &csv_path,
-                format!(
-                    "row {}: order `{order}` (a number, `exact` or `variable`)",
-                    i + 2
-                ),
-            ));
-        }
-        let label = crate::work_precision::curve_label(&row.integrator, order);
+        let label = crate::work_precision::curve_label(&row.integrator, &row.order.to_string());
         let rung = (row.wall_time_s, row.evaluations as f64, row.error);
         match curves.last_mut() {
             Some(c) if c.label == label => c.rungs.push(rung),
@@ -492,21 +547,6 @@ fn long_figure(dir: &Path) -> Result<StackedFigure> {
         .map(|(label, points)| Series::line(label, points))
         .collect();
     Ok(record.figure(&params, series))
-}
-
-/// What the atlas figure needs of its `manifest.json`.
-#[derive(serde::Deserialize)]
-struct AtlasRecord {
-    cases: Vec<AtlasCaseRecord>,
-    methods: Vec<String>,
-}
-
-/// A case as the atlas's manifest records it.
-#[derive(serde::Deserialize)]
-struct AtlasCaseRecord {
-    name: String,
-    scene: String,
-    bounds_error: bool,
 }
 
 /// The figure of a hard-case atlas folder, from `atlas.csv` and `manifest.json`.

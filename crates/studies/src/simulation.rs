@@ -84,11 +84,14 @@ pub fn is_scene_file(arg: &str) -> bool {
         || Path::new(arg).is_file()
 }
 
+/// The `origin` of a built-in scene ([`LoadedScene::origin`]; a file's is its path).
+pub const BUILT_IN: &str = "builtin";
+
 /// A scene as the caller names it, with its parameters and the file's run options.
 pub struct LoadedScene {
     /// The scene.
     pub scene: &'static dyn Scene,
-    /// Where it came from: `builtin` or the scene file's path.
+    /// Where it came from: [`BUILT_IN`] or the scene file's path.
     pub origin: String,
     /// Its parameters: defaults, then the file's values, then the overrides.
     pub params: Params,
@@ -147,7 +150,7 @@ pub fn load_scene(arg: &str, overrides: &[ParamOverride]) -> Result<LoadedScene,
             let params = scene.info().default_params();
             (
                 scene,
-                "builtin".to_string(),
+                BUILT_IN.to_string(),
                 params,
                 RunOptions::default(),
                 None,

@@ -465,7 +465,7 @@ pub fn run(args: &Args) -> Result<()> {
         }
         _ => None,
     };
-    if setup.origin != "builtin" {
+    if setup.origin != simulation::BUILT_IN {
         let scene_file = Path::new(&setup.origin);
         let outputs = [
             ("-o", &csv_dest),
@@ -623,7 +623,7 @@ pub fn run(args: &Args) -> Result<()> {
     }
 
     let r = &setup.plan;
-    let source = if setup.origin == "builtin" {
+    let source = if setup.origin == simulation::BUILT_IN {
         String::new()
     } else {
         format!(" (from {})", setup.origin)

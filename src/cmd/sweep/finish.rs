@@ -36,7 +36,8 @@ pub(super) fn finish(
     } else {
         None
     };
-    let text = manifest::to_text(&SweepManifest::new(
+    let text = manifest::to_text(&SweepRecord::new(
+        crate::provenance::now(report.threads),
         def,
         report,
         shard,

@@ -42,11 +42,12 @@ use tumble_studies::sweep::{
 use tumble_output::table::Format;
 
 use super::args::{parse_angle, parse_set};
-use crate::manifest::{self, SweepManifest};
+use crate::manifest;
 use crate::output;
 use crate::signals;
 use tumble_plot as plot;
 use tumble_studies::simulation::{self, Naming};
+use tumble_studies::sweep::record::SweepRecord;
 
 /// Flags of `tumble sweep`.
 #[derive(clap::Args, Debug)]

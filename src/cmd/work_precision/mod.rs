@@ -16,7 +16,8 @@ use anyhow::{Result, bail};
 use tumble_integrators::registry;
 use tumble_scenarios::{Params, Scene, StepControl};
 use tumble_studies::work_precision::{
-    self, Config, Ladder, LongRun, control_words, cost_at, fitted_slope, long_run_methods,
+    self, Config, LONG_FACTOR, Ladder, LongRun, Rung, control_words, cost_at, fitted_slope,
+    long_run_methods,
 };
 
 use super::simulate::{LoadedScene, SceneArgs, load_scene, number};
@@ -29,7 +30,7 @@ use tumble_plot::saved::SceneRecord;
 use tumble_plot::work_precision::{Curve, LongRecord, long_label};
 use tumble_plot::xy::Series;
 use tumble_studies::simulation::{Naming, flag_words};
-use tumble_studies::work_precision::record::{RungRecord, StudyRecord};
+use tumble_studies::work_precision::record::StudyRecord;
 
 /// Flags of `tumble work-precision`.
 #[derive(clap::Args, Debug)]
@@ -94,9 +95,6 @@ pub struct Args {
 /// Each run of the reference is limited to this multiple of `--max-seconds`.
 const REFERENCE_FACTOR: f64 = Config::REFERENCE_FACTOR;
 
-/// Each run of `--long` is limited to this multiple of `--max-seconds`.
-const LONG_FACTOR: f64 = 600.0;
-
 /// Runs the subcommand.
 ///
 /// # Errors
@@ -132,7 +130,7 @@ pub fn run(args: &Args) -> Result<()> {
     if let Some(file) = &args.recommend {
         return recommend::run(scene, &origin, &params, args, file);
     }
-    let stem = if origin == "builtin" {
+    let stem = if origin == tumble_studies::simulation::BUILT_IN {
         info.name.to_string()
     } else {
         PathBuf::from(&origin)
@@ -195,7 +193,7 @@ pub fn run(args: &Args) -> Result<()> {
 
     output::write_whole(
         &dir.join("work-precision.csv"),
-        RungRecord::csv_text(&RungRecord::of(&ladders))?.as_bytes(),
+        Rung::csv_text(Rung::of(&ladders))?.as_bytes(),
     )?;
     let curves: Vec<Curve> = ladders
         .iter()
@@ -296,7 +294,7 @@ pub(super) fn study_ladder(
     config: &Config,
     dest: &std::path::Path,
 ) -> Result<Ladder> {
-    let mut on_rung = |r: &work_precision::Rung| print_rung(name, r);
+    let mut on_rung = |r: &Rung| print_rung(name, r);
     let ladder =
         work_precision::ladder(scene, params, name, &reference.state, config, &mut on_rung);
     stop_if_interrupted(dest)?;
@@ -306,11 +304,11 @@ pub(super) fn study_ladder(
 }
 
 /// A rung on stderr.
-pub(super) fn print_rung(name: &str, r: &work_precision::Rung) {
+pub(super) fn print_rung(name: &str, r: &Rung) {
     eprintln!(
         "  {:<13} {:<20} error {:9.2e}  {:>10} evaluations  {}",
         name,
-        control_words(r.control),
+        r.control().map_or_else(String::new, control_words),
         r.error,
         r.evaluations,
         seconds(r.wall_time_s)

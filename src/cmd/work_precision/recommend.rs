@@ -11,11 +11,9 @@ use anyhow::{Context, Result, anyhow, bail};
 use tumble_scenarios::recommendation::{Measurements, Provenance, SceneMeasurements};
 use tumble_scenarios::scenes::builtin;
 use tumble_scenarios::{Params, Scene};
-use tumble_studies::work_precision::{self, Config};
+use tumble_studies::work_precision::{self, Config, LONG_FACTOR};
 
-use super::{
-    Args, LONG_FACTOR, REFERENCE_FACTOR, print_rung, stop_if_interrupted, study_reference,
-};
+use super::{Args, REFERENCE_FACTOR, print_rung, stop_if_interrupted, study_reference};
 use crate::output;
 
 /// Runs `--recommend FILE` on `scene` (loaded from `origin` with `params`).
@@ -32,7 +30,7 @@ pub(super) fn run(
     file: &Path,
 ) -> Result<()> {
     let info = scene.info();
-    if origin != "builtin" {
+    if origin != tumble_studies::simulation::BUILT_IN {
         bail!(
             "--recommend: measures a built-in scene's recommendations, and {origin} is a file; \
              name a built-in scene (`tumble scenes` lists them)"

@@ -1,6 +1,7 @@
 //! Hard cases: a fixed, named battery of situations that break integrators, each a scene with
 //! parameters and a horizon, why it is hard, an independent reference or an exact property, and
-//! what a good method does; and the atlas of every method on every case ([`atlas`]).
+//! what a good method does; and the atlas of every method on every case ([`atlas`]), whose
+//! folder's `manifest.json` is [`record::AtlasRecord`].
 //!
 //! # Case files
 //!
@@ -34,6 +35,7 @@
 //! property's bounds and columns.
 
 pub mod atlas;
+pub mod record;
 
 use std::path::Path;
 

@@ -73,7 +73,8 @@
 //! folders of the `N` shards of a sweep into the folder an unsharded run writes.
 //! Each run on a folder appends a line to its compute record ([`compute`]: host, threads,
 //! wall time, points computed and failed) when it ends, completed or stopped; a merge
-//! gathers the records of its shards.
+//! gathers the records of its shards. The folder's `manifest.json` is one type,
+//! [`record::SweepRecord`], written by `tumble sweep` and read back as the same type.
 //!
 //! The library never prints: progress goes to a callback, cancellation comes in through an
 //! `AtomicBool`.
@@ -91,6 +92,7 @@ pub mod merge;
 pub mod metrics;
 mod overrides;
 mod raw;
+pub mod record;
 pub mod refine;
 pub mod resolution;
 mod value;

@@ -243,6 +243,11 @@ pub fn matching_step(
     Ok(best)
 }
 
+/// Each long run (`work-precision --long`, and the long runs behind a scene's recommendations,
+/// [`super::measure_recommendations`]) is limited to this multiple of
+/// [`super::Config::max_run_seconds`] (`--max-seconds`): the `seconds` given to [`long_runs`].
+pub const LONG_FACTOR: f64 = 600.0;
+
 /// Runs `runs` (integrator, step or tolerance) over `[0, t_end]` in parallel, each recording
 /// its relative energy error in `bins` logarithmic time bins from `first` on; each run is cut
 /// after `seconds` of wall time when given (its result is then

@@ -42,14 +42,16 @@ mod long;
 mod recommend;
 pub mod record;
 
+pub use record::Rung;
+
 use std::time::Instant;
 
 use tumble_integrators::registry::{self, Family, MethodInfo, Order};
 
 use long::power_law;
 pub use long::{
-    EnergyHistory, LongRun, cost_distance, cost_per_second, long_run_methods, long_runs,
-    matching_step, matching_tolerance,
+    EnergyHistory, LONG_FACTOR, LongRun, cost_distance, cost_per_second, long_run_methods,
+    long_runs, matching_step, matching_tolerance,
 };
 pub use recommend::{cost_at, measure_recommendations};
 use tumble_integrators::Flow;
@@ -216,28 +218,6 @@ impl Config {
             max_error: 1e-1,
         }
     }
-}
-
-/// One run of a ladder.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Rung {
-    /// Integrator.
-    pub integrator: String,
-    /// Step or tolerance.
-    pub control: StepControl,
-    /// Accepted steps.
-    pub steps: u64,
-    /// Right-hand-side evaluations (steps for methods without a right-hand side).
-    pub evaluations: u64,
-    /// [`state_error`] at the final time.
-    pub error: f64,
-    /// Largest relative energy error over every step.
-    pub max_energy_rel_err: f64,
-    /// Wall time (s) of one run observing only the ends: the median over samples of the mean
-    /// of back-to-back runs (each sample at least 5 ms).
-    pub wall_time_s: f64,
-    /// Timed runs in all.
-    pub repeats: usize,
 }
 
 /// Above this error a rung is coarse: a failure there does not end the ladder.
@@ -523,9 +503,12 @@ pub fn rung(
         times.push(start.elapsed().as_secs_f64() / batch as f64);
     }
     let repeats = samples * batch;
+    let (dt, tol) = plan.step.dt_tol();
     Ok(Rung {
         integrator: plan.integrator().to_string(),
-        control: plan.step,
+        order: plan.method.order,
+        dt,
+        tol,
         steps: summary.steps,
         evaluations: summary.evaluations,
         error: state_error(info, &state, reference),
@@ -648,7 +631,11 @@ pub fn ladder(
     loop {
         let control = control_at(k, n0);
         k += 1;
-        if out.rungs.last().is_some_and(|last| last.control == control) {
+        if out
+            .rungs
+            .last()
+            .is_some_and(|last| last.control() == Some(control))
+        {
             continue;
         }
         let Some(r) = run(control, &mut out) else {
@@ -713,7 +700,7 @@ pub const RETIME_ROUNDS: usize = 5;
 /// Times every rung of `ladders` again, the rungs taking turns: `rounds` rounds, in each of
 /// which every rung runs one batch of back-to-back runs observing only the ends (as many as
 /// last 5 ms by the rung's first timing; one for a run over 5 ms). Each rung's
-/// [`Rung::seconds`] becomes the median of its batches' means. A ladder times its rungs one
+/// [`Rung::wall_time_s`] becomes the median of its batches' means. A ladder times its rungs one
 /// method after another, so a change of the machine's speed during a study (another process's
 /// burst on a shared host) falls on some methods and not on others; taken in turns it falls on
 /// all of them alike, and the ratios between methods, which a study is read for, hold.
@@ -742,10 +729,18 @@ pub fn retime(
         }
         let base = ladder_plan(info, &ladder.integrator, config)?;
         for (r, rung) in ladder.rungs.iter().enumerate() {
+            let control = rung.control().ok_or_else(|| SceneError::InvalidOption {
+                option: "dt",
+                value: rung.dt.unwrap_or(f64::NAN),
+                reason: format!(
+                    "a rung of {} needs a step or a tolerance, not both or neither",
+                    ladder.integrator
+                ),
+            })?;
             jobs.push(Job {
                 ladder: l,
                 rung: r,
-                plan: base.with_step(rung.control)?.observing(Observe::Ends),
+                plan: base.with_step(control)?.observing(Observe::Ends),
                 batch: batch_for(rung.wall_time_s),
                 times: Vec::with_capacity(rounds),
             });

@@ -1,7 +1,8 @@
-//! The records of a work–precision study: one [`RungRecord`] per run (the rows of
-//! `work-precision.csv`, and of Python's `work_precision` frame) and the [`StudyRecord`] of its
-//! `manifest.json`. `tumble work-precision` writes them, `tumble plot` reads them back, and
-//! Python hands over the same rows: one type each, so names cannot drift apart.
+//! The records of a work–precision study: one [`Rung`] per run (the type the ladders compute
+//! is the row of `work-precision.csv`, and of Python's `work_precision` frame) and the
+//! [`StudyRecord`] of its `manifest.json`. `tumble work-precision` writes them, `tumble plot`
+//! reads them back, and Python hands over the same rows: one type each, so names cannot drift
+//! apart.
 
 use std::collections::BTreeMap;
 
@@ -12,33 +13,57 @@ use tumble_scenarios::{Params, StepControl};
 
 use super::{Config, Ladder, Reference};
 
-/// One run of a ladder: a row of `work-precision.csv` (field order is the column order).
+/// One run of a ladder, as computed and as recorded: a row of `work-precision.csv` and of
+/// Python's `work_precision` rows (field order is the column order).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct RungRecord {
+pub struct Rung {
     /// The integrator.
     pub integrator: String,
-    /// Its order: a number, `exact` or `variable`.
-    pub order: String,
+    /// Its order, written as a number, `exact` or `variable`.
+    #[serde(with = "order_words")]
+    pub order: Order,
     /// The fixed step (s), for a fixed-step method.
     pub dt: Option<f64>,
     /// The tolerance, for an adaptive one.
     pub tol: Option<f64>,
     /// Accepted steps.
     pub steps: u64,
-    /// Right-hand-side evaluations.
+    /// Right-hand-side evaluations (steps for methods without a right-hand side).
     pub evaluations: u64,
     /// The error at the final time ([`super::state_error`] against the reference).
     pub error: f64,
-    /// The largest relative energy error (at the final time: the timed runs observe only the
-    /// ends).
+    /// The largest relative energy error (over every step of the monitored run).
     pub max_energy_rel_err: f64,
-    /// Wall time of one run (s) ([`super::Rung::wall_time_s`]).
+    /// Wall time (s) of one run observing only the ends: the median over samples of the mean
+    /// of back-to-back runs (each sample at least 5 ms; [`super::retime`] times it again).
     pub wall_time_s: f64,
     /// Timed runs in all.
     pub repeats: usize,
 }
 
-impl RungRecord {
+/// [`Rung::order`] as `work-precision.csv` writes it: the [`Order`]'s words (`4`, `exact`,
+/// `variable`), where the manifest writes a number, `null` or `"variable"`.
+mod order_words {
+    use serde::{Deserialize, Deserializer, Serializer, de::Error};
+    use tumble_integrators::registry::Order;
+
+    pub(super) fn serialize<S: Serializer>(order: &Order, s: S) -> Result<S::Ok, S::Error> {
+        s.collect_str(order)
+    }
+
+    pub(super) fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<Order, D::Error> {
+        let words = String::deserialize(d)?;
+        match words.as_str() {
+            "exact" => Ok(Order::Exact),
+            "variable" => Ok(Order::Variable),
+            n => n.parse().map(Order::Finite).map_err(|_| {
+                D::Error::custom(format!("order `{words}`: a number, `exact` or `variable`"))
+            }),
+        }
+    }
+}
+
+impl Rung {
     /// The columns of `work-precision.csv`: the fields, in order.
     pub const COLUMNS: [&'static str; 10] = [
         "integrator",
@@ -53,40 +78,27 @@ impl RungRecord {
         "repeats",
     ];
 
-    /// The rows of `ladders`, ladder by ladder, rung by rung.
+    /// The step or tolerance the rung ran at (`None` for a row read with both or neither).
     #[must_use]
-    pub fn of(ladders: &[Ladder]) -> Vec<RungRecord> {
-        ladders
-            .iter()
-            .flat_map(|l| {
-                l.rungs.iter().map(|r| {
-                    let (dt, tol) = r.control.dt_tol();
-                    RungRecord {
-                        integrator: l.integrator.clone(),
-                        order: l.order.to_string(),
-                        dt,
-                        tol,
-                        steps: r.steps,
-                        evaluations: r.evaluations,
-                        error: r.error,
-                        max_energy_rel_err: r.max_energy_rel_err,
-                        wall_time_s: r.wall_time_s,
-                        repeats: r.repeats,
-                    }
-                })
-            })
-            .collect()
+    pub fn control(&self) -> Option<StepControl> {
+        StepControl::from_dt_tol(self.dt, self.tol).ok().flatten()
     }
 
-    /// The row's fields as `work-precision.csv` writes them, in [`RungRecord::COLUMNS`]
-    /// order: numbers in Rust's shortest round-trip decimal form (`0.0001`, never `1e-4`), an
-    /// absent `dt` or `tol` empty.
+    /// The rungs of `ladders`, ladder by ladder, rung by rung: the rows of the study.
+    #[must_use]
+    pub fn of(ladders: &[Ladder]) -> Vec<&Rung> {
+        ladders.iter().flat_map(|l| &l.rungs).collect()
+    }
+
+    /// The row's fields as `work-precision.csv` writes them, in [`Rung::COLUMNS`] order:
+    /// numbers in Rust's shortest round-trip decimal form (`0.0001`, never `1e-4`), an absent
+    /// `dt` or `tol` empty.
     #[must_use]
     pub fn csv_fields(&self) -> [String; 10] {
         let optional = |v: Option<f64>| v.map_or_else(String::new, |v| v.to_string());
         [
             self.integrator.clone(),
-            self.order.clone(),
+            self.order.to_string(),
             optional(self.dt),
             optional(self.tol),
             self.steps.to_string(),
@@ -102,7 +114,7 @@ impl RungRecord {
     ///
     /// # Errors
     /// Never in practice (the CSV is written to memory); the writer's error otherwise.
-    pub fn csv_text(rows: &[RungRecord]) -> Result<String, csv::Error> {
+    pub fn csv_text<'a>(rows: impl IntoIterator<Item = &'a Rung>) -> Result<String, csv::Error> {
         let mut w = csv::Writer::from_writer(Vec::new());
         w.write_record(Self::COLUMNS)?;
         for row in rows {

@@ -187,7 +187,7 @@ fn bad_case_files_are_refused_with_the_file_and_key() {
 }
 
 /// A quick case of one's own: the free hoop over 0.2 s.
-const QUICK: &str = r#"
+pub(crate) const QUICK: &str = r#"
 name = "quick-hoop"
 scene = "free-hoop"
 why = "w"

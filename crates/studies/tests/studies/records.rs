@@ -1,7 +1,8 @@
 //! The records tumble writes read back equal to what was written: a run's record
 //! (`FILE.csv.json`) through JSON, a work–precision study's rows through the CSV text
-//! `work-precision.csv` holds and its manifest through JSON; and the CSV's columns are the
-//! record's fields, in order, so a writer and a reader of the same type agree by construction.
+//! `work-precision.csv` holds and its manifest through JSON, a sweep's and an atlas's
+//! `manifest.json` through JSON, to the bit; and the CSV's columns are the record's fields, in
+//! order, so a writer and a reader of the same type agree by construction.
 
 use std::collections::BTreeMap;
 
@@ -11,10 +12,16 @@ use tumble_scenarios::RunOptions;
 use tumble_scenarios::scene::{Discard, StepControl};
 use tumble_scenarios::scenes::find;
 use tumble_studies::error_estimate::{Tap, WrittenRows, estimate};
+use tumble_studies::hard_cases::Case;
+use tumble_studies::hard_cases::atlas::{self, AtlasConfig, Method};
+use tumble_studies::hard_cases::record::AtlasRecord;
 use tumble_studies::record::{EstimateStatus, Estimated, RunRecord, RunSetup};
 use tumble_studies::simulation::{BODY_FRAME, DEFAULT_ENERGY_WARN};
+use tumble_studies::sweep::record::SweepRecord;
+use tumble_studies::sweep::{self, CheckSize, RunConfig, Shard, SweepDefinition};
+use tumble_studies::work_precision::Rung;
 use tumble_studies::work_precision::record::{
-    FailedRungRecord, LadderRecord, ReferenceRecord, RungRecord, StudyRecord,
+    FailedRungRecord, LadderRecord, ReferenceRecord, StudyRecord,
 };
 
 /// The record of a short run of `scene` with `step`, its error estimated.
@@ -144,11 +151,11 @@ fn a_record_with_both_or_neither_step_is_refused() {
     assert!(record.step().unwrap_err().to_string().contains("neither"));
 }
 
-fn rung(integrator: &str, order: &str, control: StepControl, error: f64) -> RungRecord {
+fn rung(integrator: &str, order: Order, control: StepControl, error: f64) -> Rung {
     let (dt, tol) = control.dt_tol();
-    RungRecord {
+    Rung {
         integrator: integrator.to_string(),
-        order: order.to_string(),
+        order,
         dt,
         tol,
         steps: 4096,
@@ -165,20 +172,25 @@ fn work_precision_rows_read_back_from_their_csv_equal_to_those_written() {
     let rows = vec![
         rung(
             "rk4",
-            "4",
+            Order::Finite(4),
             StepControl::Fixed(1.0 / 3.0),
             0.03819485488124899,
         ),
-        rung("dop853", "8", StepControl::Tolerance(1e-10), 4.8e-15),
-        rung("exact", "exact", StepControl::Fixed(0.5), 0.0),
+        rung(
+            "dop853",
+            Order::Finite(8),
+            StepControl::Tolerance(1e-10),
+            4.8e-15,
+        ),
+        rung("exact", Order::Exact, StepControl::Fixed(0.5), 0.0),
         rung(
             "taylor",
-            "variable",
+            Order::Variable,
             StepControl::Tolerance(1e-14),
             1.0e-300,
         ),
     ];
-    let text = RungRecord::csv_text(&rows).unwrap();
+    let text = Rung::csv_text(&rows).unwrap();
     // Rust's shortest decimal form, never an exponent; an absent step or tolerance empty.
     assert_eq!(
         text.lines().nth(2).unwrap(),
@@ -186,23 +198,31 @@ fn work_precision_rows_read_back_from_their_csv_equal_to_those_written() {
          0.000012345678901234568,7"
     );
     let mut reader = csv::Reader::from_reader(text.as_bytes());
-    let back: Vec<RungRecord> = reader.deserialize().collect::<Result<_, _>>().unwrap();
+    let back: Vec<Rung> = reader.deserialize().collect::<Result<_, _>>().unwrap();
     assert_eq!(back, rows);
     for (a, b) in back.iter().zip(&rows) {
         assert_eq!(a.error.to_bits(), b.error.to_bits());
         assert_eq!(a.wall_time_s.to_bits(), b.wall_time_s.to_bits());
     }
+    // An order that is none of a number, `exact` and `variable` is refused, naming it.
+    let damaged = text.replacen("rk4,4,", "rk4,fourth,", 1);
+    let e = csv::Reader::from_reader(damaged.as_bytes())
+        .deserialize::<Rung>()
+        .next()
+        .unwrap()
+        .unwrap_err();
+    assert!(e.to_string().contains("order `fourth`"), "{e}");
 }
 
 #[test]
 fn work_precision_columns_are_the_row_records_fields_in_order() {
     let mut w = csv::Writer::from_writer(Vec::new());
-    w.serialize(rung("rk4", "4", StepControl::Fixed(0.1), 1e-3))
+    w.serialize(rung("rk4", Order::Finite(4), StepControl::Fixed(0.1), 1e-3))
         .unwrap();
     let serialized = String::from_utf8(w.into_inner().unwrap()).unwrap();
     let header = serialized.lines().next().unwrap();
-    assert_eq!(header, RungRecord::COLUMNS.join(","));
-    let written = RungRecord::csv_text(&[]).unwrap();
+    assert_eq!(header, Rung::COLUMNS.join(","));
+    let written = Rung::csv_text(&[] as &[Rung]).unwrap();
     assert_eq!(written.trim_end(), header);
 }
 
@@ -249,4 +269,91 @@ fn a_study_record_reads_back_equal_to_the_one_written() {
     assert!(text.contains("\"order\": \"variable\","), "{text}");
     let back: StudyRecord = serde_json::from_str(&text).unwrap();
     assert_eq!(back, record);
+}
+
+/// `text` read back as a `T` is the record written, and writes the same text: every `f64`
+/// to the bit (two `f64`s with the same shortest decimal form are one).
+fn reads_back_to_the_bit<T>(record: &T) -> T
+where
+    T: serde::Serialize + serde::de::DeserializeOwned + PartialEq + std::fmt::Debug,
+{
+    let text = serde_json::to_string_pretty(record).unwrap();
+    let back: T = serde_json::from_str(&text).unwrap();
+    assert_eq!(&back, record);
+    assert_eq!(serde_json::to_string_pretty(&back).unwrap(), text);
+    back
+}
+
+#[test]
+fn a_sweep_record_reads_back_equal_to_the_one_written() {
+    let refined = SweepDefinition::parse(
+        include_str!("../fixtures/refined-map.sweep.toml"),
+        "refined.toml",
+        &[],
+    )
+    .unwrap();
+    let listed = SweepDefinition::parse(
+        "scene = \"free-hoop\"\n[run]\nt_end = 0.5\n[[axes]]\nparameter = \"omega0\"\n\
+         values = [1.5, 2.0, 3.25]\n",
+        "listed.toml",
+        &[],
+    )
+    .unwrap();
+    let random = SweepDefinition::parse(
+        "scene = \"free-hoop\"\n[run]\nt_end = 0.5\n[[axes]]\nparameter = \"omega0\"\n\
+         range = [1.0, 6.0]\nspacing = \"log\"\n[random]\nsamples = 3\nseed = 42\n",
+        "random.toml",
+        &[],
+    )
+    .unwrap();
+    let tmp = tempfile::tempdir().unwrap();
+    for (k, def) in [refined, listed, random].iter().enumerate() {
+        let dir = tmp.path().join(k.to_string());
+        let report = sweep::run(def, &dir, &RunConfig::default(), &mut |_| {}).unwrap();
+        let check = sweep::check_sweep(def, &report.rows, CheckSize::Points(2), 1).unwrap();
+        let record = SweepRecord::new(
+            Provenance::now("0.0.0", "unknown", 1),
+            def,
+            &report,
+            Shard::ALL,
+            "sweep",
+            &["tilt-map.png".to_string()],
+            check.as_ref().map(|c| (c, 1e-3)),
+        );
+        assert_eq!(record.points, report.total);
+        assert_eq!(record.refinement.is_some(), k == 0);
+        assert!(record.self_check.is_some());
+        let back = reads_back_to_the_bit(&record);
+        assert_eq!(back.definition.axes.len(), def.axes.len(), "{}", def.origin);
+    }
+}
+
+#[test]
+fn an_atlas_record_reads_back_equal_to_the_one_written() {
+    let cases = [Case::parse(super::hard_cases::QUICK, "quick.case.toml").unwrap()];
+    let methods = [
+        Method::parse("rk4:dt=0.01").unwrap(),
+        Method::parse("dop853").unwrap(),
+    ];
+    let tmp = tempfile::tempdir().unwrap();
+    let config = AtlasConfig {
+        threads: 1,
+        run_seconds: 60.0,
+        budget: 600.0,
+        resume: false,
+        cancel: None,
+    };
+    let report = atlas::run(&cases, &methods, tmp.path(), &config, &|_, _| {}).unwrap();
+    let record = AtlasRecord::new(
+        Provenance::now("0.0.0", "unknown", 1),
+        &cases,
+        &methods,
+        &report,
+        600.0,
+        60.0,
+    );
+    assert_eq!(record.methods, ["rk4:dt=0.01", "dop853"]);
+    assert_eq!(record.counts.values().sum::<usize>(), 2);
+    let back = reads_back_to_the_bit(&record);
+    assert_eq!(back.cases[0].scene, "free-hoop");
 }

@@ -95,8 +95,8 @@ fn retimed_rungs_keep_their_runs_and_count_the_interleaved_repeats() {
         assert!(!new.rungs.is_empty(), "{}: no rungs", new.integrator);
         for (a, b) in old.rungs.iter().zip(&new.rungs) {
             assert_eq!(
-                (a.control, a.steps, a.evaluations),
-                (b.control, b.steps, b.evaluations)
+                (a.control(), a.dt, a.tol, a.steps, a.evaluations),
+                (b.control(), b.dt, b.tol, b.steps, b.evaluations)
             );
             assert_eq!(a.error.to_bits(), b.error.to_bits());
             assert!(b.wall_time_s.is_finite() && b.wall_time_s > 0.0, "{b:?}");
