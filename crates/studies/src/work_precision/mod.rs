@@ -15,8 +15,8 @@
 //! The final state is the row `simulate` writes at the final time: the coordinates and their
 //! rates (for rotating bodies the unit quaternion and the body angular velocity). Its error is
 //! the mixed absolute/relative maximum norm that Runge–Kutta error control uses,
-//! `max_i |yᵢ − yᵢ,ref| / (1 + |yᵢ,ref|)`, with the quaternion compared up to its sign
-//! (`q` and `−q` are the same rotation).
+//! `max_i |yᵢ − yᵢ,ref| / (1 + |yᵢ,ref|)`, with each quaternion compared up to its sign
+//! (`q` and `−q` are the same rotation; a model with several orientations has one per body).
 //!
 //! # The reference
 //!
@@ -115,46 +115,49 @@ pub(crate) fn state_len(info: &SceneInfo) -> usize {
     info.coordinates.len() + rates
 }
 
-/// Index of the quaternion's `qw` among the coordinates (followed by `qx, qy, qz`).
-fn quaternion_index(info: &SceneInfo) -> Option<usize> {
-    info.coordinates
-        .windows(4)
-        .position(|w| w == ["qw", "qx", "qy", "qz"])
+/// Whether the four coordinates from `i` are a quaternion's `qw, qx, qy, qz`, under a common
+/// prefix (a model with several orientations shows each as `NAME_qw` …).
+fn is_quaternion(coordinates: &[&str], i: usize) -> bool {
+    let Some(w) = coordinates.get(i..i + 4) else {
+        return false;
+    };
+    let Some(prefix) = w[0].strip_suffix("qw") else {
+        return false;
+    };
+    ["qx", "qy", "qz"]
+        .iter()
+        .zip(&w[1..])
+        .all(|(c, name)| name.strip_suffix(c) == Some(prefix))
 }
 
-/// The error of `y` against `reference` (module doc): `max |Δᵢ| / (1 + |refᵢ|)`, quaternion
-/// compared up to its sign, and `∞` when the times differ by more than round-off or a value
-/// is not finite.
+/// The error of `y` against `reference` (module doc): `max |Δᵢ| / (1 + |refᵢ|)`, each
+/// quaternion compared up to its own sign, and `∞` when the times differ by more than
+/// round-off or a value is not finite.
 #[must_use]
 pub fn state_error(info: &SceneInfo, y: &FinalState, reference: &FinalState) -> f64 {
-    if y.values.len() != reference.values.len()
-        || (y.t - reference.t).abs() > 1e-9 * reference.t.abs().max(1.0)
+    let n = y.values.len();
+    if n != reference.values.len() || (y.t - reference.t).abs() > 1e-9 * reference.t.abs().max(1.0)
     {
         return f64::INFINITY;
     }
-    let quat = quaternion_index(info);
-    let norm = |flip: bool| {
-        y.values
-            .iter()
-            .zip(&reference.values)
-            .enumerate()
-            .map(|(i, (a, b))| {
-                let sign = match quat {
-                    Some(q) if flip && (q..q + 4).contains(&i) => -1.0,
-                    _ => 1.0,
-                };
-                (sign * a - b).abs() / (1.0 + b.abs())
-            })
-            .fold(
-                0.0f64,
-                |m, e| if e.is_nan() { f64::INFINITY } else { m.max(e) },
-            )
+    let error = |i: usize, sign: f64| {
+        let (a, b) = (y.values[i], reference.values[i]);
+        let e = (sign * a - b).abs() / (1.0 + b.abs());
+        if e.is_nan() { f64::INFINITY } else { e }
     };
-    if quat.is_some() {
-        norm(false).min(norm(true))
-    } else {
-        norm(false)
+    let mut worst = 0.0f64;
+    let mut i = 0;
+    while i < n {
+        if i + 4 <= n && is_quaternion(info.coordinates, i) {
+            let block = |sign: f64| (i..i + 4).fold(0.0f64, |m, j| m.max(error(j, sign)));
+            worst = worst.max(block(1.0).min(block(-1.0)));
+            i += 4;
+        } else {
+            worst = worst.max(error(i, 1.0));
+            i += 1;
+        }
     }
+    worst
 }
 
 /// How the reference was computed.

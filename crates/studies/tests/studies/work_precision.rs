@@ -263,3 +263,53 @@ fn long_runs_compare_the_geometric_methods() {
     assert!(a.abs() < 0.2, "split2 exponent {a}");
     assert!(runs[1].result.is_ok());
 }
+
+/// The error norm compares each quaternion up to its own sign: a state with two orientations
+/// (`upper_qw …`, `lower_qw …`, as a model with several shows them) whose lower quaternion
+/// ends negated is the same state (error 0), while negating only part of a quaternion, or a
+/// quaternion whose names do not share a prefix, is an error of `2|q|/(1 + |q|)`.
+#[test]
+fn each_prefixed_quaternion_is_compared_up_to_its_own_sign() {
+    let base = find("free-body").unwrap().info();
+    let info = tumble_scenarios::SceneInfo {
+        coordinates: &[
+            "upper_qw", "upper_qx", "upper_qy", "upper_qz", "lower_qw", "lower_qx", "lower_qy",
+            "lower_qz", "theta",
+        ],
+        ..*base
+    };
+    let q = [0.5, -0.5, 0.5, 0.5];
+    let reference = FinalState {
+        t: 1.0,
+        values: [0.6, 0.0, 0.8, 0.0]
+            .into_iter()
+            .chain(q)
+            .chain([0.3])
+            .collect(),
+    };
+    let mut y = reference.clone();
+    for v in &mut y.values[4..8] {
+        *v = -*v;
+    }
+    assert_eq!(work_precision::state_error(&info, &y, &reference), 0.0);
+    // Both negated, each alone: still the same rotations.
+    for v in &mut y.values[0..4] {
+        *v = -*v;
+    }
+    assert_eq!(work_precision::state_error(&info, &y, &reference), 0.0);
+    // Part of a quaternion negated is a different rotation.
+    let mut part = reference.clone();
+    part.values[5] = -part.values[5];
+    let e = work_precision::state_error(&info, &part, &reference);
+    assert!((e - 1.0 / 1.5).abs() < 1e-15, "{e}");
+    // Names that do not share a prefix are not a quaternion: negated, they count.
+    let mixed = tumble_scenarios::SceneInfo {
+        coordinates: &[
+            "upper_qw", "upper_qx", "upper_qy", "upper_qz", "lower_qw", "lower_qx", "other_qy",
+            "lower_qz", "theta",
+        ],
+        ..*base
+    };
+    let e = work_precision::state_error(&mixed, &y, &reference);
+    assert!((e - 1.0 / 1.5).abs() < 1e-15, "{e}");
+}
