@@ -142,6 +142,13 @@ fn long_mode_plots_the_energy_error_of_geometric_methods_and_a_matched_adaptive_
         );
     }
     assert!(text(&out.stderr).contains("matching cost"));
+    // The manifest is its one record type, every key held, read back as written.
+    let manifest = crate::support::record::<tumble_plot::work_precision::LongManifest>(
+        &dir.join("manifest.json"),
+    );
+    assert_eq!(manifest["command"], "work-precision --long");
+    assert_eq!(manifest["scene"], "free-body");
+    assert_eq!(manifest["steps"], 4000);
 }
 
 #[test]

@@ -35,7 +35,7 @@ use crate::atlas::{Atlas, AtlasCase};
 use crate::colour::ColourMap;
 use crate::heatmap::Heatmap;
 use crate::trajectory::RunResult;
-use crate::work_precision::{Curve, LongRecord};
+use crate::work_precision::{Curve, LongManifest};
 use crate::xy::{Series, StackedFigure};
 use crate::{DrawResult, Figure, PlotError, Result};
 
@@ -201,7 +201,7 @@ fn row_error(path: &Path, i: usize) -> impl FnOnce(csv::Error) -> PlotError + '_
 }
 
 /// What a figure needs of a result's record: the scene and its parameters.
-#[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct SceneRecord {
     /// The scene's name.
     pub scene: String,
@@ -528,7 +528,7 @@ struct LongRow {
 /// The figure of a long-run folder, from `long.csv` and `manifest.json`.
 fn long_figure(dir: &Path) -> Result<StackedFigure> {
     let manifest_path = dir.join("manifest.json");
-    let record: LongRecord = read_json(&manifest_path)?;
+    let LongManifest { record, .. } = read_json(&manifest_path)?;
     let (_, params) = record.scene.scene(&manifest_path)?;
     let csv_path = dir.join("long.csv");
     let mut reader = csv_reader(&csv_path)?;

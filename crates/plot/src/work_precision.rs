@@ -109,7 +109,7 @@ pub fn figure(title: String, subtitle: String, curves: &[Curve]) -> StackedFigur
 
 /// The record of a long run (`work-precision --long`), written into its folder's
 /// `manifest.json` and read back by `tumble plot`: what its figure's title and subtitle say.
-#[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct LongRecord {
     /// The scene and its parameters.
     #[serde(flatten)]
@@ -122,6 +122,22 @@ pub struct LongRecord {
     pub equal_cost: bool,
     /// How the adaptive method was matched to the fixed-step ones, in words (empty: none).
     pub matched: String,
+}
+
+/// `manifest.json` of a long-run folder (`work-precision --long`): its [`LongRecord`] with the
+/// command, where the scene came from and the provenance. The command line writes it and
+/// `tumble plot` reads it back, the one type for both.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct LongManifest {
+    /// The command that wrote it (`work-precision --long`).
+    pub command: String,
+    /// Where the scene came from (`builtin`, or the scene or model file as given).
+    pub origin: String,
+    /// The record the figure is drawn from.
+    #[serde(flatten)]
+    pub record: LongRecord,
+    /// Which binary wrote it, where and when.
+    pub provenance: tumble_output::Provenance,
 }
 
 impl LongRecord {

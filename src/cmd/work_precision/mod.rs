@@ -23,11 +23,10 @@ use tumble_studies::work_precision::{
 use super::simulate::{LoadedScene, SceneArgs, load_scene, number};
 use crate::manifest;
 use crate::output;
-use crate::provenance::Provenance;
 use crate::signals;
 use tumble_plot as plot;
 use tumble_plot::saved::SceneRecord;
-use tumble_plot::work_precision::{Curve, LongRecord, long_label};
+use tumble_plot::work_precision::{Curve, LongManifest, LongRecord, long_label};
 use tumble_plot::xy::Series;
 use tumble_studies::simulation::{Naming, flag_words};
 use tumble_studies::work_precision::record::StudyRecord;
@@ -602,9 +601,9 @@ fn long(
     output::write_whole(
         &dir.join("manifest.json"),
         manifest::to_text(&LongManifest {
-            command: "work-precision --long",
-            origin,
-            record: &record,
+            command: "work-precision --long".into(),
+            origin: origin.to_string(),
+            record,
             provenance: crate::provenance::now(1),
         })?
         .as_bytes(),
@@ -663,15 +662,4 @@ fn report_long(
     }
     lines.push(Series::line(long_label(&r.integrator, &control), points));
     Ok(())
-}
-
-/// `manifest.json` of a long-run folder: the record its figure is drawn from, with where the
-/// scene came from and the provenance.
-#[derive(serde::Serialize)]
-struct LongManifest<'a> {
-    command: &'static str,
-    origin: &'a str,
-    #[serde(flatten)]
-    record: &'a LongRecord,
-    provenance: Provenance,
 }
