@@ -140,9 +140,10 @@ pub const PATTERN: CrossPattern = {
 /// The recursion of the module doc in any scalar: coefficients `0 ..= order` of the solution
 /// through `x0` into `coeffs`.
 ///
-/// Order `k` is one pass over `j = 0 ..= k` accumulating all twelve Cauchy sums at once,
-/// `(rₐ × ω)ₖ = Σⱼ rₐ,ⱼ × ωₖ₋ⱼ` for the three rows `rₐ` of `R` and `(m × ω)ₖ`, each term in the
-/// form of a cross product's component, `uᵦ₊₁ wᵦ₊₂ − uᵦ₊₂ wᵦ₊₁`, summed over `j` upwards.
+/// Order `k` accumulates all twelve Cauchy sums at once, `(rₐ × ω)ₖ = Σⱼ rₐ,ⱼ × ωₖ₋ⱼ` for the
+/// three rows `rₐ` of `R` and `(m × ω)ₖ`, each term in the form of a cross product's
+/// component, `uᵦ₊₁ wᵦ₊₂ − uᵦ₊₂ wᵦ₊₁`: the terms `j = 1 … k − 1` first
+/// ([`CrossSums::middle`]), then those that hold order `k` ([`CrossSums::finish_with`]).
 #[inline(always)]
 fn expand<S: SeriesScalar>(
     c: &Constants<S>,
@@ -156,17 +157,21 @@ fn expand<S: SeriesScalar>(
     let (a, wr) = (&c.inverse, &c.weighted_center);
     for k in 0..order {
         let x = &coeffs[k * N..(k + 1) * N];
+        // The terms of orders below k first, then the end terms from the order-k factors.
+        let middle = work.middle(k);
         // ωₖ = J⁻¹ mₖ (a row of J⁻¹ times mₖ, summed left to right).
         let omega: [S; 3] =
             std::array::from_fn(|i| a[i][0] * x[9] + a[i][1] * x[10] + a[i][2] * x[11]);
-        work.set(
-            k,
+        let factors = [
             PATTERN.first.map(|i| x[i]),
             PATTERN.second.map(|i| x[i]),
             PATTERN.w_first.map(|i| omega[i]),
             PATTERN.w_second.map(|i| omega[i]),
-        );
-        let sums = work.sum(0, k);
+        ];
+        let [f1, f2, f3, f4] = &factors;
+        let sums = work.finish_with(k, 0, middle, [f1, f2, f3, f4]);
+        let [f1, f2, f3, f4] = factors;
+        work.set(k, f1, f2, f3, f4);
         // + w (Rᵀe₃)ₖ × ρ, Rᵀe₃ the third row.
         let g = [x[2], x[5], x[8]];
         let torque = [

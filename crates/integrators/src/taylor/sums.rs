@@ -87,26 +87,131 @@ impl<S: SeriesScalar, const M: usize> CrossSums<S, M> {
         self.w_second[j] = w_second;
     }
 
-    /// Order `k` of every lane, over `j = from ..= k`: `Σⱼ firstⱼ ⊙ w_firstₖ₋ⱼ −
-    /// secondⱼ ⊙ w_secondₖ₋ⱼ`, each term `u w − u′ w′` added in turn, `j` upwards.
+    /// Order `k` of every lane, over `j = from ..= k` (`from` is 0 or 1): [`CrossSums::middle`]
+    /// then [`CrossSums::finish`].
     ///
     /// # Panics
-    /// If order `k` has not been [`CrossSums::set`] (or `from > k`).
+    /// If order `k` has not been [`CrossSums::set`], or `from > 1`.
     #[inline(always)]
     #[must_use]
     pub fn sum(&self, from: usize, k: usize) -> [S; M] {
-        let mut sums = [S::ZERO; M];
-        let ups = self.first[from..=k].iter().zip(&self.second[from..=k]);
-        let downs = self.w_first[..=k - from]
-            .iter()
-            .zip(&self.w_second[..=k - from])
-            .rev();
-        for ((u1, u2), (w1, w2)) in ups.zip(downs) {
+        self.finish(k, from, self.middle(k))
+    }
+
+    /// The terms `j = 1 ..= k − 1` of order `k` of every lane, `Σⱼ firstⱼ ⊙ w_firstₖ₋ⱼ −
+    /// secondⱼ ⊙ w_secondₖ₋ⱼ` (zero for `k ≤ 1`): the part whose factors are all of orders
+    /// below `k`, known before any order-`k` factor is. A recursion computes it first for every
+    /// stage of an order, so that the stages' sums run side by side and only their end terms
+    /// ([`CrossSums::finish`]) wait on each other. Two partial sums, over odd and over even `j`
+    /// (each term `u w − u′ w′` added in turn, `j` upwards), halve the chain of dependent
+    /// additions; their sum is the result.
+    ///
+    /// # Panics
+    /// If an order below `k` has not been [`CrossSums::set`].
+    #[inline(always)]
+    #[must_use]
+    pub fn middle(&self, k: usize) -> [S; M] {
+        let mut odd = [S::ZERO; M];
+        let mut even = [S::ZERO; M];
+        if k < 2 {
+            return odd;
+        }
+        let ups = self.first[1..k].iter().zip(&self.second[1..k]);
+        let downs = self.w_first[1..k].iter().zip(&self.w_second[1..k]).rev();
+        let mut terms = ups.zip(downs);
+        while let Some(((u1, u2), (w1, w2))) = terms.next() {
             for i in 0..M {
-                sums[i] += u1[i] * w1[i] - u2[i] * w2[i];
+                odd[i] += u1[i] * w1[i] - u2[i] * w2[i];
+            }
+            let Some(((u1, u2), (w1, w2))) = terms.next() else {
+                break;
+            };
+            for i in 0..M {
+                even[i] += u1[i] * w1[i] - u2[i] * w2[i];
+            }
+        }
+        for i in 0..M {
+            odd[i] += even[i];
+        }
+        odd
+    }
+
+    /// Order `k` of every lane from its [`CrossSums::middle`]: the term `j = k` added, then (with
+    /// `from = 0`) the term `j = 0`; at `k = 0` the one term `j = 0` (none with `from = 1`).
+    /// The end terms hold the order-`k` factors, which [`CrossSums::set`] must have given.
+    ///
+    /// # Panics
+    /// If order `k` has not been set, or `from > 1`.
+    #[inline(always)]
+    #[must_use]
+    pub fn finish(&self, k: usize, from: usize, middle: [S; M]) -> [S; M] {
+        self.finish_with(
+            k,
+            from,
+            middle,
+            [
+                &self.first[k],
+                &self.second[k],
+                &self.w_first[k],
+                &self.w_second[k],
+            ],
+        )
+    }
+
+    /// [`CrossSums::finish`] with the order-`k` factors given (`[first, second, w_first,
+    /// w_second]`, as [`CrossSums::set`] takes them) rather than read back: a recursion that has
+    /// them at hand keeps them out of memory on its critical path. Order 0's are read.
+    ///
+    /// # Panics
+    /// If order 0 has not been set (for `k > 0`), or `from > 1`.
+    #[inline(always)]
+    #[must_use]
+    pub fn finish_with(
+        &self,
+        k: usize,
+        from: usize,
+        middle: [S; M],
+        [first, second, w_first, w_second]: [&[S; M]; 4],
+    ) -> [S; M] {
+        assert!(from <= 1, "a Cauchy sum starts at j = 0 or 1, not {from}");
+        let mut sums = middle;
+        if k == 0 {
+            if from == 0 {
+                add_term(&mut sums, first, second, w_first, w_second);
+            }
+        } else {
+            add_term(
+                &mut sums,
+                first,
+                second,
+                &self.w_first[0],
+                &self.w_second[0],
+            );
+            if from == 0 {
+                add_term(
+                    &mut sums,
+                    &self.first[0],
+                    &self.second[0],
+                    w_first,
+                    w_second,
+                );
             }
         }
         sums
+    }
+}
+
+/// `sums += u1 ⊙ w1 − u2 ⊙ w2`, lane by lane.
+#[inline(always)]
+fn add_term<S: SeriesScalar, const M: usize>(
+    sums: &mut [S; M],
+    u1: &[S; M],
+    u2: &[S; M],
+    w1: &[S; M],
+    w2: &[S; M],
+) {
+    for i in 0..M {
+        sums[i] += u1[i] * w1[i] - u2[i] * w2[i];
     }
 }
 
@@ -158,5 +263,46 @@ mod tests {
         let k = 5;
         let tail = sums.sum(1, k)[0];
         assert!((tail - (2f64.powi(5) / fact(5) - a[0] * a[5])).abs() <= 1e-16);
+    }
+
+    /// [`CrossSums::finish_with`] takes order k's factors from its arguments: with zeros
+    /// stored at order k, it gives the sums of the true factors (against the products summed
+    /// term by term in a plain double loop), for every `k` and both starts.
+    #[test]
+    fn finish_with_uses_the_given_order_k_factors() {
+        let order = 9;
+        let f = |j: usize, lane: usize, which: usize| {
+            ((j * 7 + lane * 3 + which * 11) % 13) as f64 / 13.0 - 0.4
+        };
+        let lanes = |j: usize, which: usize| -> [f64; 2] { [f(j, 0, which), f(j, 1, which)] };
+        for k in 0..=order {
+            let mut sums = CrossSums::<f64, 2>::default();
+            sums.reserve(order);
+            for j in 0..k {
+                sums.set(j, lanes(j, 0), lanes(j, 1), lanes(j, 2), lanes(j, 3));
+            }
+            sums.set(k, [0.0; 2], [0.0; 2], [0.0; 2], [0.0; 2]);
+            let given = [lanes(k, 0), lanes(k, 1), lanes(k, 2), lanes(k, 3)];
+            for from in 0..=1 {
+                let got = sums.finish_with(
+                    k,
+                    from,
+                    sums.middle(k),
+                    [&given[0], &given[1], &given[2], &given[3]],
+                );
+                for lane in 0..2 {
+                    let plain: f64 = (from..=k)
+                        .map(|j| {
+                            f(j, lane, 0) * f(k - j, lane, 2) - f(j, lane, 1) * f(k - j, lane, 3)
+                        })
+                        .sum();
+                    assert!(
+                        (got[lane] - plain).abs() <= 1e-15,
+                        "k = {k}, from = {from}, lane {lane}: {} vs {plain}",
+                        got[lane]
+                    );
+                }
+            }
+        }
     }
 }

@@ -38,7 +38,7 @@ use std::time::Instant;
 
 use tumble_integrators::Error as IntegrationError;
 use tumble_integrators::taylor::{
-    TaylorError, clock_step, jorba_zou_order, jorba_zou_step, jorba_zou_tolerance,
+    TaylorError, clock_step, jorba_zou_order, jorba_zou_step, jorba_zou_tolerance, two_sum,
 };
 
 use super::{EulerPoissonHoop, State};
@@ -225,6 +225,8 @@ impl Batch {
         let started = Instant::now();
         let mut c = Constants::default();
         let mut state = [[0.0; N]; LANES];
+        // The rounding error each lane's state carries (the scalar method's compensated sum).
+        let mut carry = [[0.0; N]; LANES];
         let mut lanes = [Lane::Empty; LANES];
         let mut errors: [Option<SceneError>; LANES] = std::array::from_fn(|_| None);
         let mut metrics = [Track::default(); LANES];
@@ -341,7 +343,13 @@ impl Batch {
                     continue;
                 }
                 step_of[l] = f64::NAN;
-                let end: [f64; N] = std::array::from_fn(|i| ends[i][l]);
+                // x₀ + (increment + carry), the error of the addition carried (as
+                // `TaylorStepper::commit` does).
+                let mut end = [0.0; N];
+                let mut next_carry = [0.0; N];
+                for i in 0..N {
+                    (end[i], next_carry[i]) = two_sum(state[l][i], ends[i][l] + carry[l][i]);
+                }
                 if end.iter().any(|v| !v.is_finite()) {
                     errors[l] = Some(SceneError::Integration(IntegrationError::NonFinite {
                         t: t[l],
@@ -352,6 +360,7 @@ impl Batch {
                     continue;
                 }
                 state[l] = end;
+                carry[l] = next_carry;
                 steps[l] += 1;
                 let t_next = if last_of[l] { t_end } else { t[l] + step };
                 let eq = &members[l].0;
@@ -497,17 +506,21 @@ impl Batch {
         (0..N).fold(0.0f64, |m, i| m.max(self.x[i * self.len + j][l].abs()))
     }
 
-    /// Every lane's state at `τ` from its point, `Σₖ xₖ τᵏ` (Horner, as the scalar method
-    /// sums): `[component][lane]`. A NaN `τ` gives NaN.
+    /// Every lane's increment over `τ` from its point, `Σₖ₌₁ᵖ xₖ τᵏ` (Horner, as the scalar
+    /// method sums it before adding it to the state with compensation):
+    /// `[component][lane]`. A NaN `τ` gives NaN.
     #[inline(always)]
-    fn sum(&self, p: usize, tau: &V) -> [V; N] {
+    fn increment(&self, p: usize, tau: &V) -> [V; N] {
         std::array::from_fn(|i| {
             let x = &self.x[i * self.len..];
             let mut s = x[p];
-            for xk in x[..p].iter().rev() {
+            for xk in x[1..p].iter().rev() {
                 for l in 0..LANES {
                     s[l] = s[l] * tau[l] + xk[l];
                 }
+            }
+            for l in 0..LANES {
+                s[l] *= tau[l];
             }
             s
         })
@@ -581,7 +594,7 @@ impl pulp::WithSimd for Expand<'_> {
     }
 }
 
-/// [`Batch::sum`] and [`Batch::slopes`] likewise.
+/// [`Batch::increment`] and [`Batch::slopes`] likewise.
 struct Ends<'a> {
     batch: &'a Batch,
     p: usize,
@@ -593,7 +606,7 @@ impl pulp::WithSimd for Ends<'_> {
     #[inline(always)]
     fn with_simd<S: pulp::Simd>(self, _: S) -> Self::Output {
         (
-            self.batch.sum(self.p, self.step),
+            self.batch.increment(self.p, self.step),
             self.batch.slopes(self.p, self.step),
         )
     }

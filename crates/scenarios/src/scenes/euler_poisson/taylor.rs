@@ -289,16 +289,27 @@ fn full(
     work.reserve(order);
     let half_mu = 0.5 * eq.mu;
     let (a0, a1) = ((eq.jd + half_mu) * eq.inv_det, half_mu * eq.inv_det);
+    // sin 2α = 2 s c, cos 2α = (c − s)(c + s): one library call, each within an ulp or two.
     let (sin, cos) = x0[FULL_ALPHA].sin_cos();
-    let (sin2, cos2) = (2.0 * x0[FULL_ALPHA]).sin_cos();
-    let mut trig = [sin, cos, sin2, cos2];
+    let mut trig = [sin, cos, 2.0 * sin * cos, (cos - sin) * (cos + sin)];
+    // Reciprocals, so that no division lies on the chain from one order to the next.
+    let (inv_jn, inv_mu) = (1.0 / eq.jn, 1.0 / eq.mu);
     for k in 0..order {
         let x = &coeffs[k * N..(k + 1) * N];
+        // The terms of every stage whose factors are all of lower orders first: four
+        // independent passes. Each stage's end terms (`j = 0` and `j = k`, which hold its
+        // order-k factors) then follow from the factors as computed, not read back.
+        let middle_trig = work.trig.middle(k);
+        let middle_omega = work.omega.middle(k);
+        let middle_dw = work.dw.middle(k);
+        let middle_main = work.main.middle(k);
         if k > 0 {
             // k sₖ = Σⱼ₌₁ᵏ j αⱼ cₖ₋ⱼ, k cₖ = −Σⱼ₌₁ᵏ j αⱼ sₖ₋ⱼ; twice that for 2α.
-            let u = k as f64 * x[FULL_ALPHA];
-            work.trig.set_left(k, [u; 4], [0.0; 4]);
-            let t = work.trig.sum(1, k);
+            let u = [k as f64 * x[FULL_ALPHA]; 4];
+            let t = work
+                .trig
+                .finish_with(k, 1, middle_trig, [&u, &[0.0; 4], &[0.0; 4], &[0.0; 4]]);
+            work.trig.set_left(k, u, [0.0; 4]);
             let inv = 1.0 / k as f64;
             trig = [t[0] * inv, -t[1] * inv, 2.0 * t[2] * inv, -2.0 * t[3] * inv];
         }
@@ -306,17 +317,22 @@ fn full(
         work.trig.set_right(k, [cos, sin, cos2, sin2], [0.0; 4]);
         // ωₖ, linear in Π with coefficients affine in sin 2α, cos 2α.
         let (px, py, pz) = (x[FULL_PI], x[FULL_PI + 1], x[FULL_PI + 2]);
-        work.omega
-            .set(k, [cos2, sin2], [sin2, cos2], [px, px], [-py, py]);
-        let o = work.omega.sum(0, k);
+        let omega_factors = [[cos2, sin2], [sin2, cos2], [px, px], [-py, py]];
+        let [f1, f2, f3, f4] = &omega_factors;
+        let o = work.omega.finish_with(k, 0, middle_omega, [f1, f2, f3, f4]);
+        let [f1, f2, f3, f4] = omega_factors;
+        work.omega.set(k, f1, f2, f3, f4);
         let omega = [
             a0 * px + a1 * o[0],
             a0 * py + a1 * o[1],
-            (pz - x[FULL_P_ALPHA]) / eq.jn,
+            (pz - x[FULL_P_ALPHA]) * inv_jn,
         ];
         let [wx, wy, wz] = omega;
-        work.dw.set(k, [wx, wx], [wy, 0.0], [wx, wy], [wy, 0.0]);
-        let [dk, wk] = work.dw.sum(0, k);
+        let dw_factors = [[wx, wx], [wy, 0.0], [wx, wy], [wy, 0.0]];
+        let [f1, f2, f3, f4] = &dw_factors;
+        let [dk, wk] = work.dw.finish_with(k, 0, middle_dw, [f1, f2, f3, f4]);
+        let [f1, f2, f3, f4] = dw_factors;
+        work.dw.set(k, f1, f2, f3, f4);
         // Γ = (x₂, x₅, x₈), the third row of R.
         let (gx, gy, gz) = (x[2], x[5], x[8]);
         let mut first = [0.0; 16];
@@ -333,8 +349,10 @@ fn full(
         second[12..].copy_from_slice(&[0.0, 0.0, gy, cos2]);
         w_first[12..].copy_from_slice(&[sin, cos, sin, 0.5 * dk]);
         w_second[12..].copy_from_slice(&[0.0, 0.0, cos, wk]);
+        let sums = work
+            .main
+            .finish_with(k, 0, middle_main, [&first, &second, &w_first, &w_second]);
         work.main.set(k, first, second, w_first, w_second);
-        let sums = work.main.sum(0, k);
         let (p_alpha, scale) = (x[FULL_P_ALPHA], 1.0 / (k + 1) as f64);
         let next = &mut coeffs[(k + 1) * N..(k + 2) * N];
         // Ṙ = R hat(ω) row by row.
@@ -346,7 +364,7 @@ fn full(
         next[FULL_PI + 1] = (sums[10] + eq.k * sums[GZ_COS]) * scale;
         next[FULL_PI + 2] = (sums[11] + eq.k * sums[G]) * scale;
         // α̇ = p/μ − ω_z; ṗ = μ (S D/2 − C W) + k G.
-        next[FULL_ALPHA] = (p_alpha / eq.mu - wz) * scale;
+        next[FULL_ALPHA] = (p_alpha * inv_mu - wz) * scale;
         next[FULL_P_ALPHA] = (eq.mu * sums[SD_CW] + eq.k * sums[G]) * scale;
     }
     check_finite(coeffs, N, order)
