@@ -26,7 +26,7 @@ pub use plan::{
 pub(crate) use rows::RowObserver;
 pub use rows::{
     continuous_quaternion, energy_scale, relative_energy_error, run_coupled_rows, run_hamiltonian,
-    run_rigid_rows, run_taylor_vector, run_vector,
+    run_product_rows, run_rigid_rows, run_taylor_vector, run_vector,
 };
 
 /// What a scene documents.
