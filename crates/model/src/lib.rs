@@ -15,4 +15,6 @@ pub mod taylor;
 pub mod units;
 
 pub use file::{Model, ModelFileError};
-pub use scene::{Evaluation, ModelScene, from_text, is_model_file, is_model_text, load};
+pub use scene::{
+    Evaluation, ModelProduct, ModelScene, from_text, is_model_file, is_model_text, load,
+};

@@ -78,6 +78,7 @@ impl SceneInfo {
                     ProblemKind::RigidBody,
                     ProblemKind::FreeRigidBody,
                     ProblemKind::LieVectorField,
+                    ProblemKind::ProductVectorField,
                     ProblemKind::CoupledRigidBody,
                 ];
                 if !self.not_on_group.is_empty() && m.problems.iter().all(|k| on_group.contains(k))

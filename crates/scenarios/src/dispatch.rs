@@ -19,6 +19,7 @@
 //! | [`ProblemKind::RigidBody`] | [`RigidBody`] on SO(3) × ℝ³ | LGVI and its compositions (orders 4–10), principal-axis splittings, exact-flow splitting |
 //! | [`ProblemKind::FreeRigidBody`] | [`FreeRigidBody`] | discrete Moser–Veselov, the exact flow |
 //! | [`ProblemKind::LieVectorField`] | Euler's equations as a vector field on SO(3) × ℝ³ | RKMK, Crouch–Grossman |
+//! | [`ProblemKind::ProductVectorField`] | a vector field on SO(3)ᴹ × ℝⁿ ([`ProductVectorField`]: several orientations) | RKMK, Crouch–Grossman |
 //! | [`ProblemKind::CoupledRigidBody`] | [`CoupledLagrangian`] on SO(3) × ℝⁿ | the coupled LGVI and its compositions (orders 4–10) |
 //! | [`ProblemKind::Separable`] | [`SeparableHamiltonian`] `H = T(p) + V(q)` on ℝ²ᵈ | symplectic Euler, Störmer–Verlet, and the composition tables named alone (orders 4–10), which compose Störmer–Verlet |
 //! | [`ProblemKind::Split`] | the same Hamiltonian as its drift and kick ([`HamiltonianSplit`]) | Strang splitting |
@@ -30,8 +31,8 @@
 use nalgebra::SVector;
 use tumble_integrators::registry::build::{self, NoStepper, Receive, ReceiveOde};
 use tumble_integrators::rigid::{
-    CoupledLagrangian, CoupledState, EulerEquations, FreeRigidBody, GroupState, RigidBody,
-    RigidBodyState,
+    CoupledLagrangian, CoupledState, EulerEquations, FreeRigidBody, GroupState, ProductState,
+    ProductVectorField, RigidBody, RigidBodyState,
 };
 use tumble_integrators::{
     AdaptiveStepper, Counted, DenseOutput, Driver, Event, HamiltonianSplit, Observer, Ode, Order,
@@ -375,6 +376,39 @@ where
         observer,
     };
     let report = build::coupled::<L, _, N>(plan.method, run)??;
+    Ok(Outcome {
+        t: report.t,
+        steps: report.steps,
+        evaluations: report.steps,
+        terminated: false,
+    })
+}
+
+/// Integrates a vector field on the product `SO(3)ᴹ × ℝᴺ` ([`ProblemKind::ProductVectorField`])
+/// from `state` over the plan's horizon.
+///
+/// # Errors
+/// Integration failures.
+pub fn run_product<F, O, const M: usize, const N: usize>(
+    field: &F,
+    state: &mut ProductState<M, N>,
+    plan: &RunPlan,
+    observer: &mut O,
+) -> Result<Outcome, SceneError>
+where
+    F: ProductVectorField<M, N>,
+    O: Observer<ProductState<M, N>>,
+{
+    if plan.kind != ProblemKind::ProductVectorField {
+        return Err(no_stepper(plan, plan.kind.name()));
+    }
+    let run = FixedRun {
+        problem: field,
+        state,
+        plan,
+        observer,
+    };
+    let report = build::product_vector_field::<F, _, M, N>(plan.method, run)??;
     Ok(Outcome {
         t: report.t,
         steps: report.steps,

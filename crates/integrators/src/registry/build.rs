@@ -2,7 +2,7 @@
 //! a kind of problem, handed to a receiver that runs it.
 //!
 //! One function per [`ProblemKind`] ([`ode`], [`taylor`], [`rigid_body`], [`free_rigid_body`],
-//! [`lie_vector_field`], [`coupled`], [`separable`], [`split`]) matches every [`Stepping`]
+//! [`lie_vector_field`], [`product_vector_field`], [`coupled`], [`separable`], [`split`]) matches every [`Stepping`]
 //! without a wildcard: a new family is a compile error here until each kind says whether it
 //! runs it. A new table of an existing family (an explicit pair, a Gauss table, a composition)
 //! needs nothing here — its registry row carries the table. The caller supplies a receiver
@@ -22,7 +22,8 @@ use crate::problem::{Ode, SeparableHamiltonian, SplitOde};
 use crate::rigid::{
     CoupledLagrangian, CoupledLgvi, CoupledLieGauss, CoupledState, Dmv, ExactSplitting,
     ExactStepper, FreeRigidBody, GroupState, Lgvi, LieGauss, LieVectorField,
-    PrincipalAxisSplitting, RigidBody, RigidBodyState, cg3, rkmk4,
+    PrincipalAxisSplitting, ProductState, ProductVectorField, RigidBody, RigidBodyState, cg3,
+    product_cg3, product_rkmk4, rkmk4,
 };
 use crate::state::{State, VectorState};
 use crate::stepper::{AdaptiveStepper, DenseOutput, Stepper};
@@ -260,6 +261,39 @@ where
         | Stepping::ExactFlow
         | Stepping::Taylor(_)
         | Stepping::TaylorDoubleDouble => NoStepper::of(method, ProblemKind::LieVectorField),
+    }
+}
+
+/// Builds `method`'s stepper for a vector field `F` on the product `SO(3)ᴹ × ℝᴺ` and hands it to
+/// `receiver`.
+///
+/// # Errors
+/// [`NoStepper`] when the method does not integrate vector fields on the product.
+pub fn product_vector_field<F, R, const M: usize, const N: usize>(
+    method: &MethodInfo,
+    receiver: R,
+) -> Result<R::Output, NoStepper>
+where
+    F: ProductVectorField<M, N> + ?Sized,
+    R: Receive<F, ProductState<M, N>>,
+{
+    match method.stepping {
+        Stepping::Rkmk4 => Ok(receiver.receive(product_rkmk4::<M, N>())),
+        Stepping::Cg3 => Ok(receiver.receive(product_cg3::<M, N>())),
+        Stepping::Explicit(_)
+        | Stepping::Gauss(_)
+        | Stepping::SymplecticEuler
+        | Stepping::StormerVerlet
+        | Stepping::Strang
+        | Stepping::Composition { .. }
+        | Stepping::Lgvi
+        | Stepping::LieGauss(_)
+        | Stepping::PrincipalAxisSplitting
+        | Stepping::ExactSplitting
+        | Stepping::Dmv
+        | Stepping::ExactFlow
+        | Stepping::Taylor(_)
+        | Stepping::TaylorDoubleDouble => NoStepper::of(method, ProblemKind::ProductVectorField),
     }
 }
 

@@ -111,6 +111,9 @@ pub enum ProblemKind {
     /// A vector field on `SO(3) × ℝⁿ`, `Ṙ = R hat ξ(t, R, y)`, `ẏ = f(t, R, y)`
     /// ([`crate::rigid::LieVectorField`]).
     LieVectorField,
+    /// A vector field on the product `SO(3)ᴹ × ℝⁿ` of several orientations,
+    /// `Ṙₖ = Rₖ hat ξₖ(t, R, y)`, `ẏ = f(t, R, y)` ([`crate::rigid::ProductVectorField`]).
+    ProductVectorField,
     /// A rigid body: inertia and a potential with its moment ([`crate::rigid::RigidBody`]).
     RigidBody,
     /// A torque-free rigid body ([`crate::rigid::FreeRigidBody`]).
@@ -135,6 +138,7 @@ impl ProblemKind {
             ProblemKind::Separable => "separable",
             ProblemKind::Split => "split",
             ProblemKind::LieVectorField => "lie-vector-field",
+            ProblemKind::ProductVectorField => "product-vector-field",
             ProblemKind::RigidBody => "rigid-body",
             ProblemKind::FreeRigidBody => "free-rigid-body",
             ProblemKind::CoupledRigidBody => "coupled-rigid-body",

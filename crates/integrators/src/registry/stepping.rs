@@ -255,7 +255,8 @@ const TAYLOR: &str =
 const TAYLOR_DD: &str =
     "first-order ODE whose Taylor coefficients the problem computes in double-double arithmetic";
 const FREE_BODY: &str = "free rigid body (inertia J)";
-const LIE_FIELD: &str = "vector field on SO(3) × R^n: R' = R hat(xi(t, R, y)), y' = f(t, R, y)";
+const LIE_FIELD: &str =
+    "vector field on SO(3) × R^n or SO(3)^m × R^n: R_k' = R_k hat(xi_k(t, R, y)), y' = f(t, R, y)";
 
 const RIGID_KINDS: &[ProblemKind] = &[ProblemKind::RigidBody, ProblemKind::CoupledRigidBody];
 
@@ -388,7 +389,9 @@ impl Stepping {
             Stepping::PrincipalAxisSplitting | Stepping::ExactSplitting => {
                 &[ProblemKind::RigidBody]
             }
-            Stepping::Rkmk4 | Stepping::Cg3 => &[ProblemKind::LieVectorField],
+            Stepping::Rkmk4 | Stepping::Cg3 => {
+                &[ProblemKind::LieVectorField, ProblemKind::ProductVectorField]
+            }
             Stepping::Dmv | Stepping::ExactFlow => &[ProblemKind::FreeRigidBody],
             Stepping::Taylor(_) => &[ProblemKind::TaylorSeries],
             Stepping::TaylorDoubleDouble => &[ProblemKind::DoubleDoubleTaylorSeries],

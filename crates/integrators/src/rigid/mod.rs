@@ -12,7 +12,8 @@
 //! | [`lgvi`] | Lee–Leok–McClamroch Lie group variational integrator, Newton on the Cayley vector | `lgvi` |
 //! | [`coupled`] | bodies coupled to `N` coordinates: [`CoupledLagrangian`], variational [`CoupledLgvi`], [`CoupledVectorField`] | |
 //! | [`lie_gauss`] | variational Lie–Gauss methods: Gauss–Legendre discrete Lagrangian in exponential coordinates, any even order, on rigid and coupled bodies ([`LieGauss`], [`CoupledLieGauss`]) | `lie-gauss4` … `lie-gauss10` |
-//! | [`lie_rk`] | Runge–Kutta–Munthe-Kaas and Crouch–Grossman on `SO(3) × ℝᴺ` | `rkmk4`, `cg3` |
+//! | [`lie_rk`] | Runge–Kutta–Munthe-Kaas and Crouch–Grossman on `SO(3) × ℝᴺ` and on `SO(3)ᴹ × ℝᴺ` | `rkmk4`, `cg3` |
+//! | [`product`] | [`ProductState`] `(R₁ … R_M, y)`, [`ProductVectorField`] on `SO(3)ᴹ × ℝᴺ` | |
 //! | [`splitting`] | principal-axis rotations + kicks (Strang, composed to 4/6/8), kicks + exact free flow (Strang, composed to 4/6/8) | `split2` … `split8`, `split-exact2` … `split-exact8` |
 //! | [`dmv`] | discrete Moser–Veselov | `dmv` |
 //! | [`diagnostics`] | observers: energy, `R m`, `|m|`, `‖RᵀR − 𝟙‖` | |
@@ -27,6 +28,8 @@
 //!   [`CoupledLgvi<N>`] and [`CoupledLieGauss`] integrate [`CoupledState<N>`] variationally, and
 //!   [`CoupledVectorField`] on [`GroupState<Y>`] (`Y = 3 + 2N`) feeds `rkmk4` and `cg3`.
 //! - Any vector field on `SO(3) × ℝᴺ`: implement [`LieVectorField<N>`]; use [`rkmk4`], [`cg3`].
+//! - Several orientations (`SO(3)ᴹ × ℝᴺ`, e.g. bodies joined by ball joints): implement
+//!   [`ProductVectorField<M, N>`]; use [`product_rkmk4`], [`product_cg3`].
 //!
 //! Every symmetric order-2 stepper here composes to higher order with
 //! [`crate::Composition`] (e.g. `Composition::new(&YOSHIDA6, Lgvi::default())`).
@@ -58,6 +61,7 @@ pub mod lgvi;
 pub mod lie_gauss;
 pub mod lie_rk;
 pub mod problem;
+pub mod product;
 pub mod splitting;
 pub mod state;
 pub mod taylor;
@@ -75,8 +79,12 @@ pub use lgvi::{Lgvi, lgvi4, lgvi6, lgvi8, lgvi10};
 pub use lie_gauss::{
     CoupledLieGauss, LieGauss, lie_gauss4, lie_gauss6, lie_gauss8, lie_gauss10, lie_gauss12,
 };
-pub use lie_rk::{CROUCH_GROSSMAN3, CrouchGrossman, LieRkTableau, RKMK4, Rkmk, cg3, rkmk4};
+pub use lie_rk::{
+    CROUCH_GROSSMAN3, CrouchGrossman, LieRkTableau, ProductCrouchGrossman, ProductRkmk, RKMK4,
+    Rkmk, cg3, product_cg3, product_rkmk4, rkmk4,
+};
 pub use problem::{EulerEquations, HeavyTop, LieVectorField, RigidBody};
+pub use product::{ProductState, ProductVectorField};
 pub use splitting::{
     ExactSplitting, ExactStepper, PrincipalAxisSplitting, split_exact4, split_exact6, split_exact8,
     split4, split6, split8,

@@ -16,6 +16,7 @@ mod lie_group_methods_stay_on_so3;
 mod long_run_brouwer;
 mod observed_order;
 mod pair_orders_rigid_body;
+mod product_group_methods;
 mod quadratic_invariants;
 mod registry_lists_every_method;
 mod rigid_body_hard_cases;

@@ -1,7 +1,7 @@
 //! A model as a scene: [`ModelScene`] implements [`tumble_scenarios::Scene`], so that every
 //! command, sweep and study that runs a built-in scene runs a model file, with the methods of
-//! the first-order kind ([`ProblemKind::Ode`]: the explicit pairs, `rk4`, Gauss–Legendre and
-//! its compositions) and the Taylor methods ([`ProblemKind::TaylorSeries`]: coefficients by
+//! the first-order kind ([`tumble_integrators::ProblemKind::Ode`]: the explicit pairs, `rk4`, Gauss–Legendre and
+//! its compositions) and the Taylor methods ([`tumble_integrators::ProblemKind::TaylorSeries`]: coefficients by
 //! automatic differentiation on the tape, [`crate::taylor`]; on a model with orientations on
 //! SO(3), up to [`crate::file::MAX_SO3_FRAMES`], on the tape of its first-order system, each
 //! rotation matrix a point of ℝ⁹).
@@ -25,14 +25,14 @@
 //! [`Scene`]; [`ode`] is the first-order right-hand side `M q̈ = f` ([`ModelOde`]) and the
 //! conditioning check; [`run`] routes a run to the method's kind of problem; `on_group` runs
 //! the Lie-group methods on a model with one orientation on SO(3) (the kinds it offers, the
-//! rigid and coupled bodies; a model with several runs the first-order kinds only: those
-//! methods step on one rotation group); `display` shows a state in rows (quaternions) and reads it back.
+//! rigid and coupled bodies); `on_product` runs a model with several on their product
+//! `SO(3)ᴹ × ℝʸ` with the Lie-group Runge–Kutta methods ([`ModelProduct`]; the other Lie-group
+//! methods step on one rotation group and refuse it); `display` shows a state in rows (quaternions) and reads it back.
 
 use std::collections::HashMap;
 use std::path::Path;
 use std::sync::{Mutex, OnceLock};
 
-use tumble_integrators::ProblemKind;
 use tumble_scenarios::drawing::{Drawing, Placed};
 use tumble_scenarios::{
     ParamSpec, Params, Recorder, RunPlan, RunSummary, Scene, SceneError, SceneInfo,
@@ -48,12 +48,14 @@ use tumble_jit::Native;
 mod display;
 mod ode;
 mod on_group;
+mod on_product;
 mod run;
 
 use display::Display;
 use ode::state_args;
 pub use ode::{Evaluation, MAX_CONDITION, ModelOde};
 use on_group::group_problems;
+pub use on_product::ModelProduct;
 
 /// A model file as a scene.
 #[derive(Debug)]
@@ -112,7 +114,7 @@ impl ModelScene {
     #[must_use]
     pub fn new(mut model: Model) -> Self {
         let group = (model.layout.so3 == 1).then(|| Group::new(&mut model));
-        let on_group = group_problems(&model, group.as_ref());
+        let (problems, not_on_group) = group_problems(&model, group.as_ref());
         let layout = model.layout;
         let n = layout.n;
         let fixed = move |k: u32| layout.is_param(k);
@@ -202,10 +204,7 @@ impl ModelScene {
             parameters: Box::leak(parameters.into_boxed_slice()),
             conserved: Box::leak(conserved.into_boxed_slice()),
             oracle: leak(format!("model file {}", model.origin)),
-            problems: match &on_group {
-                Ok(kinds) => kinds,
-                Err(_) => &[ProblemKind::Ode, ProblemKind::TaylorSeries],
-            },
+            problems,
             needs_dense_output: false,
             default_integrator: leak(model.run.integrator.clone()),
             default_step: model.run.dt,
@@ -218,7 +217,7 @@ impl ModelScene {
             } else {
                 Box::leak(rate_names.into_boxed_slice())
             },
-            not_on_group: on_group.as_ref().err().map_or("", |why| leak(why.clone())),
+            not_on_group: not_on_group.as_ref().map_or("", |why| leak(why.clone())),
         }));
         ModelScene {
             info,
@@ -233,7 +232,7 @@ impl ModelScene {
             taylor,
             display,
             group,
-            not_on_group: on_group.err(),
+            not_on_group,
         }
     }
 
@@ -386,7 +385,8 @@ impl Scene for ModelScene {
         }
         // One size per state length: `2n` for `n ≤ 6` scalar coordinates, `2n + 12` beside one
         // orientation on SO(3) (`n ≤ 3`), which the Lie-group methods may run too, and
-        // `2n + 12k` beside `k = 2 … 4` of them, which only the vector-space methods run.
+        // `2n + 12k` beside `k = 2 … 4` of them, which the vector-space methods run and the
+        // Lie-group Runge–Kutta methods on the product SO(3)^k × R^(2n + 3k).
         match self.model.layout.state_len() {
             2 => self.run::<2>(params, plan, &y0, recorder),
             4 => self.run::<4>(params, plan, &y0, recorder),
@@ -397,18 +397,18 @@ impl Scene for ModelScene {
             14 => self.run::<14>(params, plan, &y0, recorder),
             16 => self.run::<16>(params, plan, &y0, recorder),
             18 => self.run::<18>(params, plan, &y0, recorder),
-            24 => self.run_flat::<24>(params, plan, &y0, recorder),
-            26 => self.run_flat::<26>(params, plan, &y0, recorder),
-            28 => self.run_flat::<28>(params, plan, &y0, recorder),
-            30 => self.run_flat::<30>(params, plan, &y0, recorder),
-            36 => self.run_flat::<36>(params, plan, &y0, recorder),
-            38 => self.run_flat::<38>(params, plan, &y0, recorder),
-            40 => self.run_flat::<40>(params, plan, &y0, recorder),
-            42 => self.run_flat::<42>(params, plan, &y0, recorder),
-            48 => self.run_flat::<48>(params, plan, &y0, recorder),
-            50 => self.run_flat::<50>(params, plan, &y0, recorder),
-            52 => self.run_flat::<52>(params, plan, &y0, recorder),
-            54 => self.run_flat::<54>(params, plan, &y0, recorder),
+            24 => self.run_multi::<24, 2, 6>(params, plan, &y0, recorder),
+            26 => self.run_multi::<26, 2, 8>(params, plan, &y0, recorder),
+            28 => self.run_multi::<28, 2, 10>(params, plan, &y0, recorder),
+            30 => self.run_multi::<30, 2, 12>(params, plan, &y0, recorder),
+            36 => self.run_multi::<36, 3, 9>(params, plan, &y0, recorder),
+            38 => self.run_multi::<38, 3, 11>(params, plan, &y0, recorder),
+            40 => self.run_multi::<40, 3, 13>(params, plan, &y0, recorder),
+            42 => self.run_multi::<42, 3, 15>(params, plan, &y0, recorder),
+            48 => self.run_multi::<48, 4, 12>(params, plan, &y0, recorder),
+            50 => self.run_multi::<50, 4, 14>(params, plan, &y0, recorder),
+            52 => self.run_multi::<52, 4, 16>(params, plan, &y0, recorder),
+            54 => self.run_multi::<54, 4, 18>(params, plan, &y0, recorder),
             other => Err(SceneError::ModelRefused {
                 model: self.info.name.to_string(),
                 message: format!(

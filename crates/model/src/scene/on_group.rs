@@ -1,5 +1,6 @@
-//! The Lie-group methods on a model with one orientation on SO(3) (a model with several is
-//! refused, saying why and which methods run it): the kinds of problem it
+//! The Lie-group methods on a model with one orientation on SO(3) (a model with several runs
+//! the Lie-group Runge–Kutta methods on their product, [`super::on_product`], and the others
+//! refuse it, saying why and which methods run it): the kinds of problem it
 //! offers (as `free-body`, `heavy-top` or `free-hoop`, and the Taylor series of its
 //! first-order system), the model as a rigid body or a rigid
 //! body coupled to its scalar coordinates ([`crate::group`]), and the runs of those, whose rows
@@ -43,11 +44,33 @@ const COUPLED: &[ProblemKind] = &[
     ProblemKind::TaylorSeries,
 ];
 
-/// The Lie-group kinds a model offers at its default parameters, or why it offers none.
+/// … with several orientations on SO(3): a vector field on their product, for the Lie-group
+/// Runge–Kutta methods ([`super::on_product`]).
+const PRODUCT: &[ProblemKind] = &[
+    ProblemKind::ProductVectorField,
+    ProblemKind::Ode,
+    ProblemKind::TaylorSeries,
+];
+
+/// … without a Lie-group kind: the first-order system and its Taylor series.
+const FLAT: &[ProblemKind] = &[ProblemKind::Ode, ProblemKind::TaylorSeries];
+
+/// The kinds a model offers at its default parameters, and why the Lie-group methods that do
+/// not run it do not (`None` when they all do).
 pub(super) fn group_problems(
     model: &Model,
     group: Option<&Group>,
-) -> Result<&'static [ProblemKind], String> {
+) -> (&'static [ProblemKind], Option<String>) {
+    match group_kinds(model, group) {
+        Ok(kinds) => (kinds, None),
+        Err(why) if model.layout.so3 > 1 => (PRODUCT, Some(why)),
+        Err(why) => (FLAT, Some(why)),
+    }
+}
+
+/// The Lie-group kinds a model with at most one orientation on SO(3) offers at its default
+/// parameters, or why it offers none (for several: why only the product's methods run it).
+fn group_kinds(model: &Model, group: Option<&Group>) -> Result<&'static [ProblemKind], String> {
     let Some(group) = group else {
         return Err(if model.layout.so3 == 0 {
             "the Lie-group methods need an orientation on SO(3) (a frame with \
@@ -60,14 +83,18 @@ pub(super) fn group_problems(
                 .map(|o| format!("`{}`", o.name))
                 .collect();
             format!(
-                "the Lie-group methods step on one rotation group (SO(3), or SO(3) × R^n beside \
-                 scalar coordinates), and model `{}` has {} orientations on SO(3) ({}), a state \
-                 on their product, which they do not integrate; the vector-space methods (the \
-                 explicit pairs, Gauss–Legendre, taylor) run it, each rotation matrix as nine \
-                 numbers",
+                "model `{}` has {} orientations on SO(3) ({}), a state on their product \
+                 SO(3)^{} × R^{}, which the Lie-group methods other than rkmk4 and cg3 (the \
+                 LGVI and its compositions, Lie–Gauss, the splittings, dmv, the exact flow) do \
+                 not integrate: they step on one rotation group (SO(3), or SO(3) × R^n beside \
+                 scalar coordinates); rkmk4 and cg3 run it on the product, and the vector-space \
+                 methods (the explicit pairs, Gauss–Legendre, taylor) each rotation matrix as \
+                 nine numbers",
                 model.name,
                 names.len(),
-                names.join(", ")
+                names.join(", "),
+                names.len(),
+                2 * model.layout.n + 3 * names.len()
             )
         });
     };

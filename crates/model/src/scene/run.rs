@@ -80,7 +80,7 @@ impl ModelScene {
     /// angular velocity for each orientation on SO(3), the coordinates and rates), the energy
     /// function, then the momenta of the cyclic coordinates and the outputs (the energy's
     /// relative error, between them, is the driver's). Its workspace is allocated here, once.
-    fn row_writer<const S: usize>(
+    pub(super) fn row_writer<const S: usize>(
         &self,
         params: &Params,
     ) -> impl FnMut(f64, &SVector<f64, S>, &mut [f64]) + '_ {

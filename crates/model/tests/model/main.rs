@@ -7,6 +7,7 @@ mod fuzz;
 mod lie;
 mod models;
 mod multi_so3;
+mod multi_so3_lie;
 mod native;
 mod so3;
 mod support;

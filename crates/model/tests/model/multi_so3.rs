@@ -2,13 +2,14 @@
 //! bodies (`models/double-spherical-pendulum-so3.toml`) conserves its energy and vertical
 //! angular momentum, each computed here from the rows by Newton's definitions; it agrees with
 //! the same system written in Euler angles; two free bodies each follow the exact
-//! torque-free flow; the Lie-group methods are refused with the methods that run it.
+//! torque-free flow. (The Lie-group methods on the product of the orientations:
+//! `multi_so3_lie`.)
 
 use nalgebra::{Matrix3, Quaternion, UnitQuaternion, Vector3};
 use tumble_kinematics::{EulerConvention, EulerSequence};
 use tumble_model::{ModelScene, from_text};
 use tumble_scenarios::scenes::find;
-use tumble_scenarios::{RunOptions, Scene, StepControl};
+use tumble_scenarios::{Scene, StepControl};
 
 use crate::support::{column, run, shipped};
 
@@ -341,40 +342,6 @@ fn the_double_spherical_pendulum_is_drawn_at_its_joint() {
                 assert!((p1[i][j] - r1[(i, j)]).abs() < 1e-14, "row {k}");
                 assert!((p2[i][j] - r2[(i, j)]).abs() < 1e-14, "row {k}");
             }
-        }
-    }
-}
-
-/// A Lie-group method on a model with two orientations on SO(3) is refused before any work,
-/// naming the model, why, and the methods that run it; `tumble models` lists only those.
-#[test]
-fn a_lie_group_method_on_two_orientations_is_refused_with_what_runs_it() {
-    let scene = shipped(MODEL);
-    let methods = scene.info().integrators();
-    for listed in ["vern9", "dop853", "gauss8", "taylor"] {
-        assert!(methods.contains(&listed), "{listed} not in {methods:?}");
-    }
-    for group in ["lgvi", "lgvi4", "lie-gauss4", "rkmk4", "cg3", "split2"] {
-        assert!(!methods.contains(&group), "{group} in {methods:?}");
-    }
-    for method in ["lgvi", "lie-gauss6", "rkmk4"] {
-        let options = RunOptions {
-            integrator: Some(method.into()),
-            ..RunOptions::default()
-        };
-        let err = options.resolve(scene.info()).unwrap_err().to_string();
-        println!("{err}");
-        for expected in [
-            method,
-            MODEL,
-            "2 orientations on SO(3) (`upper`, `lower`)",
-            "which they do not integrate",
-            "applicable: ",
-            "vern9",
-            "gauss8",
-            "taylor",
-        ] {
-            assert!(err.contains(expected), "`{expected}` not in: {err}");
         }
     }
 }

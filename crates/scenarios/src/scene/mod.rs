@@ -26,7 +26,7 @@ pub use plan::{
 pub(crate) use rows::RowObserver;
 pub use rows::{
     continuous_quaternion, energy_scale, relative_energy_error, run_coupled_rows, run_hamiltonian,
-    run_rigid_rows, run_taylor_vector, run_vector,
+    run_product_rows, run_rigid_rows, run_taylor_vector, run_vector,
 };
 
 /// What a scene documents.
@@ -67,9 +67,9 @@ pub struct SceneInfo {
     /// coordinates with `_dot`.
     pub rate_names: &'static [&'static str],
     /// Why its model offers none of the Lie-group kinds of problem (rigid-body,
-    /// free-rigid-body, lie-vector-field, coupled-rigid-body): added to the refusal of a method
-    /// that needs one (a model without an orientation on SO(3)); empty where nothing needs
-    /// saying.
+    /// free-rigid-body, lie-vector-field, coupled-rigid-body), or only the product's
+    /// (product-vector-field): added to the refusal of a method that needs one (a model without
+    /// an orientation on SO(3), or with several); empty where nothing needs saying.
     pub not_on_group: &'static str,
 }
 
