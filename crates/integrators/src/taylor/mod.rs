@@ -214,8 +214,16 @@ pub fn jorba_zou_step(norm_pm1: f64, norm_p: f64, p: u32, scale: f64) -> f64 {
         }
     };
     let rho = rho(norm_pm1, p - 1).min(rho(norm_p, p));
-    let safety = (-0.7 / f64::from(p - 1)).exp();
-    rho * (-2.0f64).exp() * safety
+    rho * (-2.0f64).exp() * safety(p)
+}
+
+/// The safety factor `exp(−0.7 / (p − 1))` of [`jorba_zou_step`], computed once per order up
+/// to [`MAX_ORDER`] (the same value `exp` gives each time).
+fn safety(p: u32) -> f64 {
+    static FACTORS: std::sync::OnceLock<[f64; MAX_ORDER as usize + 1]> = std::sync::OnceLock::new();
+    let of = |p: u32| (-0.7 / (f64::from(p) - 1.0)).exp();
+    let table = FACTORS.get_or_init(|| std::array::from_fn(|p| of(p as u32)));
+    table.get(p as usize).copied().unwrap_or_else(|| of(p))
 }
 
 /// A Taylor-series method: its order rule. [`Taylor::stepper`] builds the workspace of a run.
@@ -266,6 +274,7 @@ impl Taylor {
             carry: vec![0.0; n],
             produced: None,
             increment: vec![0.0; n],
+            order_of: None,
         }
     }
 }
@@ -307,6 +316,8 @@ pub struct TaylorStepper<Y> {
     produced: Option<Y>,
     /// The step's increment `Σₖ₌₁ᵖ xₖ hᵏ`.
     increment: Vec<f64>,
+    /// The last tolerance met and its order ([`jorba_zou_order`]).
+    order_of: Option<(f64, u32)>,
 }
 
 impl<Y: crate::VectorState> TaylorStepper<Y> {
@@ -367,7 +378,14 @@ impl<Y: crate::VectorState> TaylorStepper<Y> {
         let x0 = y.as_slice().iter().fold(0.0f64, |m, c| m.max(c.abs()));
         let (eps, scale) = jorba_zou_tolerance(tolerances.rtol, tolerances.atol, x0);
         let p = match self.rule {
-            TaylorOrder::FromTolerance => jorba_zou_order(eps),
+            TaylorOrder::FromTolerance => match self.order_of {
+                Some((e, p)) if e == eps => p,
+                _ => {
+                    let p = jorba_zou_order(eps);
+                    self.order_of = Some((eps, p));
+                    p
+                }
+            },
             TaylorOrder::Fixed(p) => p.clamp(2, MAX_ORDER),
         };
         if self.cached == Some((t, p)) && self.key.as_slice() == y.as_slice() {
