@@ -291,6 +291,9 @@ impl Taylor {
 ///   accepted as it is.
 /// - **Dense output**: the step's Taylor polynomial, of the method's order, at no extra cost;
 ///   the driver locates events by root-finding on it.
+/// - **Compensated steps**: the state is advanced by the step's increment plus the rounding
+///   error of the last addition (TwoSum, Knuth 1969), so its round-off does not
+///   accumulate from step to step.
 #[derive(Debug, Clone)]
 pub struct TaylorStepper<Y> {
     rule: TaylorOrder,
