@@ -21,7 +21,10 @@
 //! [frames.hoop]                              # an orientation (body → model frame)
 //! euler = "zyz"                              # any of the 12 conventions, intrinsic by default
 //! angles = ["spin", "pi/2", "0"]             # ... or: rotations = [["z", "phi"], ["x", "theta"]]
-//! parent = "ring"                            # optional: turns with another frame (gimbals)
+//! parent = "ring"                            # optional: turns with another frame (gimbals),
+//!                                            # which may be an orientation on SO(3)
+//! origin = ["0", "0", "-l"]                  # optional: where it sits, in the parent's axes
+//!                                            # from the parent's origin (the model frame's)
 //!
 //! [frames.body]                              # an orientation integrated on SO(3) (up to 4
 //! orientation = "so3"                        # frames): R and ω are state, no gimbal lock
@@ -34,7 +37,7 @@
 //!
 //! [bodies.hoop]                              # a rigid body
 //! frame = "hoop"                             # its orientation (none: it does not turn)
-//! origin = ["0", "0", "0"]                   # its frame's origin in the model frame
+//! origin = ["0", "0", "0"]                   # in the model frame, added to its frame's
 //! mass = "M"                                 # mass, centre of mass in its frame, inertia about
 //! com = ["0", "0", "0"]                      # the centre of mass: 3 principal moments or
 //! inertia = ["M*a^2/2", "M*a^2/2", "M*a^2"]  # 6 entries [xx, yy, zz, xy, xz, yz]
@@ -83,13 +86,13 @@ mod reader;
 pub use decl::{Orientation, ParamDef, RunDefaults};
 pub use drawn::{DrawnBody, DrawnPoint, ModelDrawing};
 pub use error::ModelFileError;
-use frames::{read_links, so3_frame};
+use frames::{Placed, read_links, so3_frame};
 
 use raw::{RawFile, ordered};
 use reader::{Names, Src, check_name, domain, run_defaults};
 
 use crate::expr::{Graph, Id};
-use crate::mechanics::{Algebra, Chain, Equations, Layout, M3, V3, equations};
+use crate::mechanics::{Algebra, Chain, Equations, Layout, V3, equations};
 use crate::units;
 
 /// The largest model file read, in bytes.
@@ -368,15 +371,19 @@ impl Model {
         }
 
         // Frames.
-        let mut frames: HashMap<String, (M3, V3)> = HashMap::new();
+        let mut frames: HashMap<String, Placed> = HashMap::new();
+        // Each frame's rotations from its root (the model frame, or the orientation on SO(3)
+        // that carries it).
         let mut chains: HashMap<String, Chain> = HashMap::new();
         let mut orientations: Vec<Orientation> = Vec::new();
+        let zero = graph.constant(0.0);
         for (name, f) in ordered(raw.frames) {
             let key = format!("frames.{}", name.get_ref());
-            if chains.contains_key(name.get_ref()) {
-                return Err(src.invalid(&name.span(), &key, "declared twice"));
-            }
             let f = f.get_ref();
+            let offset = match &f.origin {
+                Some(o) => src.vector(&format!("{key}.origin"), o, &mut graph, &scope)?,
+                None => [zero; 3],
+            };
             if f.orientation.is_some() {
                 let (r, w) = so3_frame(
                     &src,
@@ -388,26 +395,43 @@ impl Model {
                     name.get_ref(),
                     layout,
                 )?;
-                frames.insert(name.get_ref().clone(), (r, w));
+                let mut alg = Algebra { g: &mut graph };
+                frames.insert(
+                    name.get_ref().clone(),
+                    Placed::on_so3(&mut alg, r, w, offset),
+                );
                 continue;
             }
             if let Some(w) = &f.omega {
                 return Err(src.invalid(&w.span(), &format!("{key}.omega"), "is the initial angular velocity of an orientation on SO(3); with `orientation = \"so3\"` it is read, otherwise the angular velocity follows from the angles' rates"));
             }
-            let mut links = match &f.parent {
-                None => Vec::new(),
-                Some(p) if orientations.iter().any(|o| &o.name == p.get_ref()) => {
-                    return Err(src.invalid(&p.span(), &format!("{key}.parent"), format!("`{}` is an orientation on SO(3), which cannot carry other frames yet; give `{}` by `angles` or `rotations` in the model frame", p.get_ref(), name.get_ref())));
-                }
-                Some(p) => chains
-                    .get(p.get_ref())
-                    .ok_or_else(|| {
-                        let known: Vec<_> = chains.keys().cloned().collect();
-                        src.invalid(&p.span(), &format!("{key}.parent"), format!("no frame `{}` declared before this one; frames declared before: {}", p.get_ref(), if known.is_empty() { "none".to_string() } else { known.join(", ") }))
-                    })?
-                    .links
-                    .clone(),
+            let parent = match &f.parent {
+                None => None,
+                Some(p) => Some(frames.get(p.get_ref()).copied().ok_or_else(|| {
+                    let mut known: Vec<_> = frames.keys().cloned().collect();
+                    known.sort();
+                    src.invalid(
+                        &p.span(),
+                        &format!("{key}.parent"),
+                        format!(
+                            "no frame `{}` declared before this one; frames declared before: {}",
+                            p.get_ref(),
+                            if known.is_empty() {
+                                "none".to_string()
+                            } else {
+                                known.join(", ")
+                            }
+                        ),
+                    )
+                })?),
             };
+            // A frame carried by an orientation on SO(3) starts its chain there.
+            let mut links = f
+                .parent
+                .as_ref()
+                .and_then(|p| chains.get(p.get_ref()))
+                .map(|c| c.links.clone())
+                .unwrap_or_default();
             match read_links(&src, &key, f, &mut graph, &scope)? {
                 Some(own) => links.extend(own),
                 None => {
@@ -416,9 +440,8 @@ impl Model {
             }
             let chain = Chain { links };
             let mut alg = Algebra { g: &mut graph };
-            let r = chain.rotation(&mut alg);
-            let w = chain.omega_body(&mut alg, layout);
-            frames.insert(name.get_ref().clone(), (r, w));
+            let placed = Placed::chained(&mut alg, parent.as_ref(), &chain, offset, layout);
+            frames.insert(name.get_ref().clone(), placed);
             chains.insert(name.get_ref().clone(), chain);
         }
         // The rotation matrix and angular velocity of each orientation on SO(3), by name:
@@ -444,7 +467,7 @@ impl Model {
         let frame_of = |src: &Src<'_>,
                         key: &str,
                         f: &Option<Spanned<String>>|
-         -> Result<Option<(M3, V3)>, ModelFileError> {
+         -> Result<Option<Placed>, ModelFileError> {
             match f {
                 None => Ok(None),
                 Some(name) => frames
@@ -523,13 +546,12 @@ impl Model {
                 potential.push(alg.g.neg(mgr));
             }
         };
-        let zero = graph.constant(0.0);
         let mut drawing = ModelDrawing::default();
         for (name, b) in ordered(raw.bodies) {
             let key = format!("bodies.{}", name.get_ref());
             let b = b.get_ref();
             let frame = frame_of(&src, &format!("{key}.frame"), &b.frame)?;
-            let origin = match &b.origin {
+            let body_origin = match &b.origin {
                 Some(o) => src.vector(&format!("{key}.origin"), o, &mut graph, &scope)?,
                 None => [zero; 3],
             };
@@ -606,23 +628,31 @@ impl Model {
                     (mass, com, inertia, None)
                 }
             };
+            // The body's frame's origin in the model frame: `origin` plus its frame's own.
+            let origin = match &frame {
+                Some(placed) => {
+                    let mut alg = Algebra { g: &mut graph };
+                    alg.add3(body_origin, placed.origin)
+                }
+                None => body_origin,
+            };
             drawing.bodies.push(DrawnBody {
                 name: name.get_ref().clone(),
-                rotation: frame.map(|(r, _)| r),
+                rotation: frame.map(|f| f.rotation),
                 origin,
                 mass,
                 com,
                 inertia,
                 parts,
             });
-            let (rc, omega) = match frame {
-                Some((r, w)) => {
+            let (rc, omega) = match &frame {
+                Some(placed) => {
                     let mut alg = Algebra { g: &mut graph };
-                    let rcom = alg.mat_vec(&r, com);
+                    let rcom = alg.mat_vec(&placed.rotation, com);
                     let rc = alg.add3(origin, rcom);
-                    let mut omega = w;
+                    let mut omega = placed.omega;
                     if let Some(wf) = alg_frame_omega {
-                        let wb = alg.mat_t_vec(&r, wf);
+                        let wb = alg.mat_t_vec(&placed.rotation, wf);
                         omega = alg.add3(omega, wb);
                     }
                     (rc, Some(omega))
@@ -634,11 +664,11 @@ impl Model {
                     (rc, alg_frame_omega)
                 }
             };
-            let on_so3 = b
-                .frame
-                .as_ref()
-                .filter(|f| orientations.iter().any(|o| &o.name == f.get_ref()))
-                .and_then(|_| frame.map(|(_, w)| (w, com, origin)));
+            let on_so3 = frame.and_then(|placed| {
+                let mut alg = Algebra { g: &mut graph };
+                let (w, x, root_origin) = placed.in_root(&mut alg, com)?;
+                Some((w, x, alg.add3(body_origin, root_origin)))
+            });
             translational(
                 &mut graph,
                 mass,
@@ -665,14 +695,16 @@ impl Model {
                 Some(o) => src.vector(&format!("{key}.origin"), o, &mut graph, &scope)?,
                 None => [zero; 3],
             };
-            let on_so3 = p
-                .frame
-                .as_ref()
-                .filter(|f| orientations.iter().any(|o| &o.name == f.get_ref()))
-                .and_then(|_| frame.map(|(_, w)| (w, local, origin)));
             let mut alg = Algebra { g: &mut graph };
-            let r = match frame {
-                Some((rot, _)) => alg.mat_vec(&rot, local),
+            let on_so3 = frame.and_then(|placed| {
+                let (w, x, root_origin) = placed.in_root(&mut alg, local)?;
+                Some((w, x, alg.add3(origin, root_origin)))
+            });
+            let r = match &frame {
+                Some(placed) => {
+                    let turned = alg.mat_vec(&placed.rotation, local);
+                    alg.add3(placed.origin, turned)
+                }
                 None => local,
             };
             let r = alg.add3(origin, r);

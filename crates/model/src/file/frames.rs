@@ -107,3 +107,107 @@ pub(super) fn so3_frame(
     });
     Ok((layout.rotation(graph, k), layout.angular_velocity(graph, k)))
 }
+
+/// Where a frame is: its rotation (body → model frame), its angular velocity in its own axes
+/// and its origin in the model frame; and, for a frame that turns with an orientation on SO(3)
+/// (that orientation itself, or a frame carried by it through `parent`), the same relative to
+/// that orientation.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Placed {
+    /// `R`, body → model frame.
+    pub(super) rotation: M3,
+    /// `ω` in the frame's own axes.
+    pub(super) omega: V3,
+    /// The frame's origin in the model frame.
+    pub(super) origin: V3,
+    /// The rotation relative to the frame's root (the model frame, or the orientation on SO(3)
+    /// that carries it): `R = R_root · rotation_in_root`.
+    pub(super) rotation_in_root: M3,
+    /// The origin in the root's axes, from the root's origin.
+    pub(super) origin_in_root: V3,
+    /// The orientation on SO(3) that carries the frame: its angular velocity and its origin.
+    pub(super) root: Option<Root>,
+}
+
+/// An orientation on SO(3) as the root of the frames it carries.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Root {
+    /// Its rotation (state inputs).
+    pub(super) rotation: M3,
+    /// Its body angular velocity (state inputs).
+    pub(super) omega: V3,
+    /// Its origin in the model frame.
+    pub(super) origin: V3,
+}
+
+impl Placed {
+    /// An orientation on SO(3) with its rotation `r`, angular velocity `w` and origin.
+    pub(super) fn on_so3(alg: &mut Algebra<'_>, r: M3, w: V3, origin: V3) -> Self {
+        Self {
+            rotation: r,
+            omega: w,
+            origin,
+            rotation_in_root: alg.identity(),
+            origin_in_root: alg.zero3(),
+            root: Some(Root {
+                rotation: r,
+                omega: w,
+                origin,
+            }),
+        }
+    }
+
+    /// A frame turned from `parent` (or from the model frame) by the rotations `own` (product
+    /// order), its origin at `offset` in the parent's axes from the parent's origin. `links`
+    /// are the parent's rotations relative to its root, extended by `own`: the frame's chain
+    /// from its root, whose rotation and angular velocity are those of the chain
+    /// ([`Chain::rotation`], [`Chain::omega_body`]) composed with the root's:
+    /// `R = R_root R_c`, `ω = R_cᵀ ω_root + ω_c`.
+    pub(super) fn chained(
+        alg: &mut Algebra<'_>,
+        parent: Option<&Placed>,
+        chain: &Chain,
+        offset: V3,
+        layout: Layout,
+    ) -> Self {
+        let rel = chain.rotation(alg);
+        let w_rel = chain.omega_body(alg, layout);
+        let origin_in_root = match parent {
+            None => offset,
+            Some(p) => {
+                let turned = alg.mat_vec(&p.rotation_in_root, offset);
+                alg.add3(p.origin_in_root, turned)
+            }
+        };
+        let root = parent.and_then(|p| p.root);
+        let (rotation, omega, origin) = match root {
+            None => (rel, w_rel, origin_in_root),
+            Some(root) => {
+                let rotation = alg.mat_mul(&root.rotation, &rel);
+                let carried = alg.mat_t_vec(&rel, root.omega);
+                let omega = alg.add3(carried, w_rel);
+                let turned = alg.mat_vec(&root.rotation, origin_in_root);
+                (rotation, omega, alg.add3(root.origin, turned))
+            }
+        };
+        Self {
+            rotation,
+            omega,
+            origin,
+            rotation_in_root: rel,
+            origin_in_root,
+            root,
+        }
+    }
+
+    /// For a position `local` in this frame: on an orientation on SO(3), that orientation's
+    /// angular velocity, the position in its axes (from its origin) and its origin
+    /// (`r = origin + R_root x`), so that the velocity is written `ω_root × x + ẋ` without the
+    /// rotation; `None` for a frame no such orientation carries.
+    pub(super) fn in_root(&self, alg: &mut Algebra<'_>, local: V3) -> Option<(V3, V3, V3)> {
+        let root = self.root?;
+        let turned = alg.mat_vec(&self.rotation_in_root, local);
+        let x = alg.add3(self.origin_in_root, turned);
+        Some((root.omega, x, root.origin))
+    }
+}

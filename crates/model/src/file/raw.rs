@@ -46,6 +46,7 @@ pub(super) struct RawFrame {
     pub(super) angles: Option<Spanned<Vec<Spanned<toml::Value>>>>,
     pub(super) rotations: Option<Spanned<Vec<Spanned<RawRotation>>>>,
     pub(super) parent: Option<Spanned<String>>,
+    pub(super) origin: Option<Spanned<Vec<Spanned<toml::Value>>>>,
 }
 
 /// `[axis, angle]` of a chain of rotations.

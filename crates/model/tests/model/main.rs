@@ -1,6 +1,7 @@
 //! Tests of tumble-model: the expression graph, the mechanics, the shipped models against their
 //! built-in twins and against independent closed forms, and the model parser under mutation.
 
+mod carried;
 mod drawing;
 mod expr;
 mod fuzz;

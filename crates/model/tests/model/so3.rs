@@ -184,9 +184,9 @@ fn mistakes_in_an_so3_frame_are_refused_with_what_to_write() {
             "5 frames with orientation = \"so3\" (`a`, `b`, `c`, `d`, `e`): a model may have at most 4",
         ),
         (
-            "[frames.a]\norientation = \"so3\"\n[frames.b]\nangles = [\"x\", \"0\", \"0\"]\nparent = \"a\"",
+            "[frames.b]\nangles = [\"x\", \"0\", \"0\"]\nparent = \"a\"\n[frames.a]\norientation = \"so3\"",
             one,
-            "`a` is an orientation on SO(3), which cannot carry other frames yet",
+            "`frames.b.parent`: no frame `a` declared before this one",
         ),
         (
             "[frames.b]\norientation = \"so3\"\nangles = [\"0\", \"0\", \"0\"]\nrotations = [[\"x\", \"1\"]]",
