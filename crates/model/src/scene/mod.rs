@@ -15,7 +15,10 @@
 //!
 //! Rows: `t`, the coordinates, their rates, `energy` (the energy function
 //! `h = Σ q̇ᵢ ∂L/∂q̇ᵢ − L`: the energy, or the Jacobi integral of a driven or rotating model),
-//! `energy_rel_err`, the momentum `p_NAME` of each cyclic coordinate, then the model's outputs.
+//! `energy_rel_err`, the momentum `p_NAME` of each cyclic coordinate, the conserved components
+//! `Lx`, `Ly`, `Lz` of the spatial angular momentum of a model on SO(3) ([`spatial_momentum`];
+//! as the built-in rigid scenes name them, and left out where the model has an output of that
+//! name), then the model's outputs.
 //!
 //! [`Scene::info`] returns `&'static SceneInfo`: a model's info (and the names in it) is leaked
 //! once per distinct model text loaded ([`load`] and [`from_text`] keep one scene per text), so
@@ -38,11 +41,12 @@ use tumble_scenarios::{
     ParamSpec, Params, Recorder, RunPlan, RunSummary, Scene, SceneError, SceneInfo,
 };
 
+use crate::expr::Id;
 use crate::expr::tape::Tape;
 use crate::expr::taylor::TaylorPlan;
 use crate::file::{Model, ModelFileError};
 use crate::group::Group;
-use crate::mechanics::first_order;
+use crate::mechanics::{Algebra, first_order};
 use tumble_jit::Native;
 
 mod display;
@@ -114,6 +118,7 @@ impl ModelScene {
     #[must_use]
     pub fn new(mut model: Model) -> Self {
         let group = (model.layout.so3 == 1).then(|| Group::new(&mut model));
+        let spatial = spatial_momentum(&mut model);
         let (problems, not_on_group) = group_problems(&model, group.as_ref());
         let layout = model.layout;
         let n = layout.n;
@@ -159,6 +164,23 @@ impl ModelScene {
                 )));
                 diagnostics.push(leak(name));
             }
+        }
+        let taken = |name: &str| {
+            model.outputs.iter().any(|(n, _)| n == name)
+                || model.coordinates.iter().any(|c| c == name)
+        };
+        for (axis, id) in spatial {
+            let name = format!("L{axis}");
+            if taken(&name) {
+                continue;
+            }
+            row_out.push(id);
+            conserved.push(leak(format!(
+                "{name} (angular momentum about the model frame's {axis} axis, the sum of R Π \
+                 over the orientations on SO(3): the model is invariant under turning them \
+                 together about that axis, at the default parameters)"
+            )));
+            diagnostics.push(leak(name));
         }
         for (name, id) in &model.outputs {
             row_out.push(*id);
@@ -334,6 +356,84 @@ fn symmetries(model: &Model) -> (Vec<bool>, bool) {
         autonomous &= tape.output(&w, n).abs() <= scale;
     }
     (cyclic, autonomous)
+}
+
+/// The components of the spatial angular momentum `J = Σ_f R_f Π_f` (`Π_f = ∂L/∂ω_f`) of a
+/// model with orientations on SO(3) that it conserves, as `(axis, J · e_axis)`.
+///
+/// Turning every orientation together, `R_f ↦ exp(ε ê) R_f` (the body angular velocities and
+/// the scalar coordinates unchanged), changes `L` at the rate `σ · e` with
+/// `σ = Σ_f R_f τ_f(L)`, `τ_f` the left-trivialized derivative along `R_f`
+/// ([`Algebra::rotation_derivative`]); where `σ · e = 0` everywhere, Noether's theorem gives
+/// `J · e` conserved (Marsden & Ratiu, *Introduction to Mechanics and Symmetry*, §11.4, the
+/// momentum map of the left action on `T SO(3)`, spatial angular momentum). `σ` is evaluated
+/// at sample states as [`symmetries`] does (rotations `exp(ĥη)` with `η` in ±1.5): a component
+/// that vanishes to `1e-12 · (1 + |L|)` at every sample is conserved. A model whose masses
+/// are all carried by its orientations, without a potential, conserves all three (a free
+/// satellite); with gravity along z, `J_z`; a mass the orientations do not carry, or a turning
+/// model frame, breaks the symmetry, and nothing is reported.
+fn spatial_momentum(model: &mut Model) -> Vec<(char, Id)> {
+    let layout = model.layout;
+    if layout.so3 == 0 {
+        return Vec::new();
+    }
+    let lagrangian = model.equations.lagrangian;
+    let momenta = model.equations.momenta.clone();
+    let mut alg = Algebra {
+        g: &mut model.graph,
+    };
+    let mut sigma = alg.zero3();
+    let mut momentum = alg.zero3();
+    for f in 0..layout.so3 {
+        let r = layout.rotation(alg.g, f);
+        let tau = alg.rotation_derivative(lagrangian, layout, f);
+        let turned = alg.mat_vec(&r, tau);
+        sigma = alg.add3(sigma, turned);
+        let pi = [0, 1, 2].map(|c| momenta[layout.n + 3 * f + c]);
+        let spatial = alg.mat_vec(&r, pi);
+        momentum = alg.add3(momentum, spatial);
+    }
+    let mut outputs = sigma.to_vec();
+    outputs.push(lagrangian);
+    let tape = Tape::new(&model.graph, &outputs);
+    let mut w = tape.workspace();
+    let mut inputs = vec![0.0; layout.param(model.params.len()) as usize];
+    for (j, p) in model.params.iter().enumerate() {
+        inputs[layout.param(j) as usize] = p.default;
+    }
+    let mut conserved = [true; 3];
+    let mut x = std::f64::consts::FRAC_1_PI;
+    let mut next = || {
+        x = (x + 0.618_033_988_749_894_9).fract();
+        3.0 * x - 1.5
+    };
+    for _ in 0..8 {
+        inputs[0] = 1.5 + next();
+        for k in 0..layout.state_len() {
+            inputs[1 + k] = next();
+        }
+        for f in 0..layout.so3 {
+            let eta = nalgebra::Vector3::new(next(), next(), next());
+            let r = nalgebra::Rotation3::new(eta);
+            for a in 0..3 {
+                for b in 0..3 {
+                    inputs[layout.rot(f, a, b) as usize] = r[(a, b)];
+                }
+            }
+        }
+        tape.run_all(&mut w, &inputs);
+        let scale = 1e-12 * (1.0 + tape.output(&w, 3).abs());
+        for (c, ok) in conserved.iter_mut().enumerate() {
+            *ok &= tape.output(&w, c).abs() <= scale;
+        }
+    }
+    ['x', 'y', 'z']
+        .into_iter()
+        .zip(momentum)
+        .zip(conserved)
+        .filter(|(_, ok)| *ok)
+        .map(|(pair, _)| pair)
+        .collect()
 }
 
 impl Scene for ModelScene {
