@@ -6,18 +6,8 @@
 use tumble_model::from_text;
 use tumble_scenarios::{Scene, StepControl};
 
+use crate::so3::difference;
 use crate::support::{column, run, shipped};
-
-/// Largest difference of two columns, relative to the larger of 1 and their magnitude.
-fn difference(a: &[f64], b: &[f64]) -> f64 {
-    assert_eq!(a.len(), b.len(), "row counts");
-    let scale = a.iter().fold(1.0f64, |m, x| m.max(x.abs()));
-    a.iter()
-        .zip(b)
-        .map(|(x, y)| (x - y).abs())
-        .fold(0.0, f64::max)
-        / scale
-}
 
 /// The shipped double pendulum's point masses placed in frames instead: the upper rod's frame
 /// turned by `θ₁` about y, the lower rod's frame carried by it with its `origin` at the upper

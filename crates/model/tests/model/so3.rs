@@ -9,7 +9,7 @@ use tumble_scenarios::{Scene, StepControl};
 use crate::support::{column, run, shipped};
 
 /// Largest difference of two columns, relative to the larger of 1 and their magnitude.
-fn difference(a: &[f64], b: &[f64]) -> f64 {
+pub(crate) fn difference(a: &[f64], b: &[f64]) -> f64 {
     assert_eq!(a.len(), b.len(), "row counts");
     let scale = a.iter().fold(1.0f64, |m, x| m.max(x.abs()));
     a.iter()
