@@ -86,7 +86,7 @@ mod reader;
 pub use decl::{Orientation, ParamDef, RunDefaults};
 pub use drawn::{DrawnBody, DrawnPoint, ModelDrawing};
 pub use error::ModelFileError;
-use frames::{Placed, read_links, so3_frame};
+use frames::{Placed, frame_names, read_links, so3_frame};
 
 use raw::{RawFile, ordered};
 use reader::{Names, Src, check_name, domain, run_defaults};
@@ -408,19 +408,13 @@ impl Model {
             let parent = match &f.parent {
                 None => None,
                 Some(p) => Some(frames.get(p.get_ref()).copied().ok_or_else(|| {
-                    let mut known: Vec<_> = frames.keys().cloned().collect();
-                    known.sort();
                     src.invalid(
                         &p.span(),
                         &format!("{key}.parent"),
                         format!(
                             "no frame `{}` declared before this one; frames declared before: {}",
                             p.get_ref(),
-                            if known.is_empty() {
-                                "none".to_string()
-                            } else {
-                                known.join(", ")
-                            }
+                            frame_names(&frames)
                         ),
                     )
                 })?),
@@ -475,19 +469,13 @@ impl Model {
                     .copied()
                     .map(Some)
                     .ok_or_else(|| {
-                        let mut known: Vec<_> = frames.keys().cloned().collect();
-                        known.sort();
                         src.invalid(
                             &name.span(),
                             key,
                             format!(
                                 "no frame `{}`; frames: {}",
                                 name.get_ref(),
-                                if known.is_empty() {
-                                    "none".to_string()
-                                } else {
-                                    known.join(", ")
-                                }
+                                frame_names(&frames)
                             ),
                         )
                     }),

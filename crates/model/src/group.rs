@@ -55,10 +55,10 @@ pub(crate) struct Group {
 }
 
 /// A short, fixed sequence of sample values in [0, 1) (golden-ratio steps).
-struct Samples(f64);
+pub(crate) struct Samples(pub(crate) f64);
 
 impl Samples {
-    fn next(&mut self) -> f64 {
+    pub(crate) fn next(&mut self) -> f64 {
         self.0 = (self.0 + 0.618_033_988_749_894_9).fract();
         self.0
     }

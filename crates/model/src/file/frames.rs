@@ -211,3 +211,14 @@ impl Placed {
         Some((root.omega, x, root.origin))
     }
 }
+
+/// The names of `frames`, sorted and joined (`none` when there are none), for a message.
+pub(super) fn frame_names(frames: &std::collections::HashMap<String, Placed>) -> String {
+    let mut known: Vec<&str> = frames.keys().map(String::as_str).collect();
+    known.sort_unstable();
+    if known.is_empty() {
+        "none".to_string()
+    } else {
+        known.join(", ")
+    }
+}

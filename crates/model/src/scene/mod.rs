@@ -45,7 +45,7 @@ use crate::expr::Id;
 use crate::expr::tape::Tape;
 use crate::expr::taylor::TaylorPlan;
 use crate::file::{Model, ModelFileError};
-use crate::group::Group;
+use crate::group::{Group, Samples};
 use crate::mechanics::{Algebra, first_order};
 use tumble_jit::Native;
 
@@ -397,16 +397,10 @@ fn spatial_momentum(model: &mut Model) -> Vec<(char, Id)> {
     outputs.push(lagrangian);
     let tape = Tape::new(&model.graph, &outputs);
     let mut w = tape.workspace();
-    let mut inputs = vec![0.0; layout.param(model.params.len()) as usize];
-    for (j, p) in model.params.iter().enumerate() {
-        inputs[layout.param(j) as usize] = p.default;
-    }
+    let mut inputs = inputs_at(model, model.params.iter().map(|p| p.default));
     let mut conserved = [true; 3];
-    let mut x = std::f64::consts::FRAC_1_PI;
-    let mut next = || {
-        x = (x + 0.618_033_988_749_894_9).fract();
-        3.0 * x - 1.5
-    };
+    let mut samples = Samples(std::f64::consts::FRAC_1_PI);
+    let mut next = || 3.0 * samples.next() - 1.5;
     for _ in 0..8 {
         inputs[0] = 1.5 + next();
         for k in 0..layout.state_len() {
