@@ -15,6 +15,7 @@
 //! the energy function (Jacobi integral) is `h = Σ q̇ᵢ ∂L/∂q̇ᵢ − L`, conserved when
 //! `∂L/∂t = 0`, and the momentum `∂L/∂q̇ₖ` of a cyclic coordinate (`∂L/∂qₖ = 0`) is conserved.
 
+use crate::expr::scalar::TapeScalar;
 use crate::expr::{Fun, Graph, Id};
 
 /// A 3-vector of nodes.
@@ -388,50 +389,50 @@ pub fn cholesky_solve(m: &mut [f64], b: &mut [f64], n: usize) -> f64 {
 /// Overwrites the lower triangle of the symmetric `M` (row-major `n × n`) with its Cholesky
 /// factor `L` (`M = L Lᵀ`). Returns the smallest ratio of a pivot to the largest diagonal
 /// entry of `M`; `≤ 0` when `M` is not positive definite (the factor is then incomplete).
-pub fn cholesky_factor(m: &mut [f64], n: usize) -> f64 {
+pub fn cholesky_factor<S: TapeScalar>(m: &mut [S], n: usize) -> f64 {
     let mut scale = 0.0f64;
     for i in 0..n {
-        scale = scale.max(m[i * n + i].abs());
+        scale = scale.max(m[i * n + i].leading().abs());
     }
     let mut worst = f64::INFINITY;
     for j in 0..n {
         let mut d = m[j * n + j];
         for k in 0..j {
-            d -= m[j * n + k] * m[j * n + k];
+            d = d - m[j * n + k] * m[j * n + k];
         }
-        let ratio = d / scale;
+        let ratio = d.leading() / scale;
         worst = worst.min(ratio);
-        if !(d > 0.0) {
+        if !(d.leading() > 0.0) {
             return ratio.min(0.0);
         }
-        let d = d.sqrt();
+        let d = d.fun(Fun::Sqrt);
         m[j * n + j] = d;
         for i in j + 1..n {
             let mut s = m[i * n + j];
             for k in 0..j {
-                s -= m[i * n + k] * m[j * n + k];
+                s = s - m[i * n + k] * m[j * n + k];
             }
-            m[i * n + j] = s / d;
+            m[i * n + j] = s.quotient(d);
         }
     }
     worst
 }
 
 /// Solves `L Lᵀ x = b` in place with the factor of [`cholesky_factor`].
-pub fn cholesky_substitute(m: &[f64], b: &mut [f64], n: usize) {
+pub fn cholesky_substitute<S: TapeScalar>(m: &[S], b: &mut [S], n: usize) {
     for i in 0..n {
         let mut s = b[i];
         for k in 0..i {
-            s -= m[i * n + k] * b[k];
+            s = s - m[i * n + k] * b[k];
         }
-        b[i] = s / m[i * n + i];
+        b[i] = s.quotient(m[i * n + i]);
     }
     for i in (0..n).rev() {
         let mut s = b[i];
         for k in i + 1..n {
-            s -= m[k * n + i] * b[k];
+            s = s - m[k * n + i] * b[k];
         }
-        b[i] = s / m[i * n + i];
+        b[i] = s.quotient(m[i * n + i]);
     }
 }
 

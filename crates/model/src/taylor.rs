@@ -18,12 +18,19 @@
 //! quotients of the factorization expanded by their own recursions. `R` is then a point of
 //! ℝ⁹: the series keeps it on SO(3) to the method's truncation error only, so `RᵀR − I` drifts
 //! at the level of the tolerance (the Lie-group methods keep it there to round-off).
+//!
+//! Both forms also expand in double-double ([`DoubleDoubleSystem`], for `taylor-dd` and the
+//! references built on it): the same recursion over [`DoubleDouble`], with the functions of
+//! order 0, the parameters' nodes and the factorization of `M₀` in double-double
+//! ([`crate::expr::scalar`]): the parameters and the model's constants, as `f64`, are the
+//! data, and everything computed from them is computed to about `2⁻¹⁰⁴`.
 
 use std::cell::RefCell;
 
 use tumble_integrators::TaylorSystem;
-use tumble_integrators::taylor::{TaylorError, check_finite};
+use tumble_integrators::taylor::{DoubleDouble, DoubleDoubleSystem, TaylorError, check_finite};
 
+use crate::expr::scalar::TapeScalar;
 use crate::expr::tape::Tape;
 use crate::expr::taylor::{TaylorPlan, TaylorWork};
 use crate::mechanics::{cholesky_factor, cholesky_substitute};
@@ -41,16 +48,29 @@ enum Form {
     },
 }
 
-/// The storage of one run's expansions.
+/// The storage of one run's expansions, in the scalar `S`.
 #[derive(Debug)]
-struct Work {
-    series: TaylorWork,
+struct Work<S> {
+    series: TaylorWork<S>,
     /// `M₀`, factorized.
-    m0: Vec<f64>,
+    m0: Vec<S>,
     /// The right-hand side of order `k`, then `aₖ`.
-    b: Vec<f64>,
+    b: Vec<S>,
     /// `aⱼ`, `j < k`, by order.
-    acc: Vec<f64>,
+    acc: Vec<S>,
+}
+
+impl<S: TapeScalar> Work<S> {
+    /// Storage for orders `0 ..= order` of the tape's expansion, and for the second-order
+    /// form's solves of `n` coordinates (`n = 0`: the first-order form).
+    fn new(tape: &Tape, plan: &TaylorPlan, fixed: &[f64], n: usize, order: usize) -> Self {
+        Work {
+            series: TaylorWork::new(tape, plan, fixed, order),
+            m0: vec![S::ZERO; n * n],
+            b: vec![S::ZERO; n],
+            acc: vec![S::ZERO; (order + 1) * n],
+        }
+    }
 }
 
 /// A model's equations at fixed parameters, computing Taylor coefficients of its solution.
@@ -61,7 +81,9 @@ pub struct ModelTaylor<'a> {
     form: Form,
     /// The tape's inputs with the parameters set (time, coordinates and rates zero).
     fixed: Vec<f64>,
-    work: RefCell<Work>,
+    work: RefCell<Work<f64>>,
+    /// The double-double storage, made at the first double-double expansion.
+    work_dd: RefCell<Option<Work<DoubleDouble>>>,
 }
 
 /// The order the storage is first sized for (that of the adaptive method at `ε ≈ 10⁻¹⁶`).
@@ -73,18 +95,13 @@ impl<'a> ModelTaylor<'a> {
     /// [`INITIAL_ORDER`].
     #[must_use]
     pub fn new(tape: &'a Tape, plan: &'a TaylorPlan, n: usize, fixed: Vec<f64>) -> Self {
-        let work = Work {
-            series: TaylorWork::new(tape, plan, &fixed, INITIAL_ORDER),
-            m0: vec![0.0; n * n],
-            b: vec![0.0; n],
-            acc: vec![0.0; (INITIAL_ORDER + 1) * n],
-        };
         ModelTaylor {
             tape,
             plan,
             form: Form::SecondOrder { n },
+            work: RefCell::new(Work::new(tape, plan, &fixed, n, INITIAL_ORDER)),
+            work_dd: RefCell::new(None),
             fixed,
-            work: RefCell::new(work),
         }
     }
 
@@ -99,12 +116,6 @@ impl<'a> ModelTaylor<'a> {
         dof: usize,
         fixed: Vec<f64>,
     ) -> Self {
-        let work = Work {
-            series: TaylorWork::new(tape, plan, &fixed, INITIAL_ORDER),
-            m0: Vec::new(),
-            b: Vec::new(),
-            acc: Vec::new(),
-        };
         ModelTaylor {
             tape,
             plan,
@@ -112,20 +123,36 @@ impl<'a> ModelTaylor<'a> {
                 dim,
                 pivots: dim..dim + dof,
             },
+            work: RefCell::new(Work::new(tape, plan, &fixed, 0, INITIAL_ORDER)),
+            work_dd: RefCell::new(None),
             fixed,
-            work: RefCell::new(work),
+        }
+    }
+
+    /// Coordinates of the second-order form (0 for the first-order form).
+    fn second_order_n(&self) -> usize {
+        match self.form {
+            Form::SecondOrder { n } => n,
+            Form::FirstOrder { .. } => 0,
         }
     }
 
     /// Sets coefficient `k` of time and of the state's inputs (`coeffs` of order `k`, the
     /// first `dim` of the tape's inputs after time).
-    fn set_inputs(&self, series: &mut TaylorWork, t0: f64, coeffs: &[f64], dim: usize, k: usize) {
+    fn set_inputs<S: TapeScalar>(
+        &self,
+        series: &mut TaylorWork<S>,
+        t0: S,
+        coeffs: &[S],
+        dim: usize,
+        k: usize,
+    ) {
         let inputs = self.tape.inputs();
         if inputs > 0 {
             let t = match k {
                 0 => t0,
-                1 => 1.0,
-                _ => 0.0,
+                1 => S::of(1.0),
+                _ => S::ZERO,
             };
             series.set_input(0, k, t);
         }
@@ -134,19 +161,43 @@ impl<'a> ModelTaylor<'a> {
         }
     }
 
-    /// The coefficients of `y' = F(t, y)` by the tape of `F` ([`Form::FirstOrder`]).
-    fn first_order_coefficients(
+    /// The coefficients of the solution through `(t0, x0)` to `order`, in the scalar `S`, with
+    /// the storage `w` (grown if the order exceeds it).
+    fn expand<S: TapeScalar>(
         &self,
-        t0: f64,
-        x0: &[f64],
+        w: &mut Work<S>,
+        t0: S,
+        x0: &[S],
         order: usize,
-        coeffs: &mut [f64],
+        coeffs: &mut [S],
+    ) -> Result<(), TaylorError> {
+        if order > w.series.max_order() {
+            *w = Work::new(
+                self.tape,
+                self.plan,
+                &self.fixed,
+                self.second_order_n(),
+                order,
+            );
+        }
+        match &self.form {
+            Form::SecondOrder { n } => self.second_order_coefficients(w, t0, x0, order, coeffs, *n),
+            Form::FirstOrder { dim, pivots } => {
+                self.first_order_coefficients(w, t0, x0, order, coeffs, (*dim, pivots.clone()))
+            }
+        }
+    }
+
+    /// The coefficients of `y' = F(t, y)` by the tape of `F` ([`Form::FirstOrder`]).
+    fn first_order_coefficients<S: TapeScalar>(
+        &self,
+        w: &mut Work<S>,
+        t0: S,
+        x0: &[S],
+        order: usize,
+        coeffs: &mut [S],
         (dim, pivots): (usize, std::ops::Range<usize>),
     ) -> Result<(), TaylorError> {
-        let w = &mut *self.work.borrow_mut();
-        if order > w.series.max_order() {
-            w.series = TaylorWork::new(self.tape, self.plan, &self.fixed, order);
-        }
         coeffs[..dim].copy_from_slice(&x0[..dim]);
         for k in 0..order {
             self.set_inputs(&mut w.series, t0, coeffs, dim, k);
@@ -154,15 +205,62 @@ impl<'a> ModelTaylor<'a> {
             if k == 0
                 && pivots
                     .clone()
-                    .any(|j| !(w.series.output(self.tape, j, 0) > 0.0))
+                    .any(|j| !(w.series.output(self.tape, j, 0).leading() > 0.0))
             {
                 return Err(TaylorError::Singular {
                     reason: "the mass matrix is not positive definite",
                 });
             }
-            let next = (k + 1) as f64;
+            let next = S::of((k + 1) as f64);
             for i in 0..dim {
-                coeffs[(k + 1) * dim + i] = w.series.output(self.tape, i, k) / next;
+                coeffs[(k + 1) * dim + i] = w.series.output(self.tape, i, k).quotient(next);
+            }
+        }
+        check_finite(coeffs, dim, order)
+    }
+
+    /// The coefficients of `q' = q̇`, `M q̈ = f` by the tape of `M` and `f`
+    /// ([`Form::SecondOrder`]).
+    fn second_order_coefficients<S: TapeScalar>(
+        &self,
+        w: &mut Work<S>,
+        t0: S,
+        x0: &[S],
+        order: usize,
+        coeffs: &mut [S],
+        n: usize,
+    ) -> Result<(), TaylorError> {
+        let dim = 2 * n;
+        coeffs[..dim].copy_from_slice(&x0[..dim]);
+        for k in 0..order {
+            self.set_inputs(&mut w.series, t0, coeffs, dim, k);
+            w.series.run_order(self.tape, self.plan, k);
+            if k == 0 {
+                for i in 0..n * n {
+                    w.m0[i] = w.series.output(self.tape, i, 0);
+                }
+                if !(cholesky_factor(&mut w.m0, n) > 0.0) {
+                    return Err(TaylorError::Singular {
+                        reason: "the mass matrix is not positive definite",
+                    });
+                }
+            }
+            for i in 0..n {
+                let mut r = w.series.output(self.tape, n * n + i, k);
+                for j in 1..=k {
+                    let a = &w.acc[(k - j) * n..(k - j + 1) * n];
+                    for (l, al) in a.iter().enumerate() {
+                        r = r - w.series.output(self.tape, i * n + l, j) * *al;
+                    }
+                }
+                w.b[i] = r;
+            }
+            cholesky_substitute(&w.m0, &mut w.b, n);
+            w.acc[k * n..(k + 1) * n].copy_from_slice(&w.b);
+            let next = S::of((k + 1) as f64);
+            for i in 0..n {
+                coeffs[(k + 1) * dim + n + i] = w.b[i].quotient(next);
+                coeffs[(k + 1) * dim + i] = coeffs[k * dim + n + i].quotient(next);
             }
         }
         check_finite(coeffs, dim, order)
@@ -184,56 +282,32 @@ impl TaylorSystem for ModelTaylor<'_> {
         order: usize,
         coeffs: &mut [f64],
     ) -> Result<(), TaylorError> {
-        let n = match &self.form {
-            Form::SecondOrder { n } => *n,
-            Form::FirstOrder { dim, pivots } => {
-                return self.first_order_coefficients(
-                    t0,
-                    x0,
-                    order,
-                    coeffs,
-                    (*dim, pivots.clone()),
-                );
-            }
-        };
-        let dim = 2 * n;
-        let w = &mut *self.work.borrow_mut();
-        if order > w.series.max_order() {
-            w.series = TaylorWork::new(self.tape, self.plan, &self.fixed, order);
-            w.acc = vec![0.0; (order + 1) * n];
-        }
-        coeffs[..dim].copy_from_slice(&x0[..dim]);
-        for k in 0..order {
-            self.set_inputs(&mut w.series, t0, coeffs, dim, k);
-            w.series.run_order(self.tape, self.plan, k);
-            if k == 0 {
-                for i in 0..n * n {
-                    w.m0[i] = w.series.output(self.tape, i, 0);
-                }
-                if !(cholesky_factor(&mut w.m0, n) > 0.0) {
-                    return Err(TaylorError::Singular {
-                        reason: "the mass matrix is not positive definite",
-                    });
-                }
-            }
-            for i in 0..n {
-                let mut r = w.series.output(self.tape, n * n + i, k);
-                for j in 1..=k {
-                    let a = &w.acc[(k - j) * n..(k - j + 1) * n];
-                    for (l, al) in a.iter().enumerate() {
-                        r -= w.series.output(self.tape, i * n + l, j) * al;
-                    }
-                }
-                w.b[i] = r;
-            }
-            cholesky_substitute(&w.m0, &mut w.b, n);
-            w.acc[k * n..(k + 1) * n].copy_from_slice(&w.b);
-            let next = (k + 1) as f64;
-            for i in 0..n {
-                coeffs[(k + 1) * dim + n + i] = w.b[i] / next;
-                coeffs[(k + 1) * dim + i] = coeffs[k * dim + n + i] / next;
-            }
-        }
-        check_finite(coeffs, dim, order)
+        self.expand(&mut self.work.borrow_mut(), t0, x0, order, coeffs)
+    }
+
+    fn double_double(&self) -> Option<&dyn DoubleDoubleSystem> {
+        Some(self)
+    }
+}
+
+impl DoubleDoubleSystem for ModelTaylor<'_> {
+    fn coefficients_dd(
+        &self,
+        t0: DoubleDouble,
+        x0: &[DoubleDouble],
+        order: usize,
+        coeffs: &mut [DoubleDouble],
+    ) -> Result<(), TaylorError> {
+        let mut slot = self.work_dd.borrow_mut();
+        let w = slot.get_or_insert_with(|| {
+            Work::new(
+                self.tape,
+                self.plan,
+                &self.fixed,
+                self.second_order_n(),
+                order.max(INITIAL_ORDER),
+            )
+        });
+        self.expand(w, t0, x0, order, coeffs)
     }
 }

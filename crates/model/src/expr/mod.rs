@@ -22,6 +22,7 @@
 //! where it is multiplied by an exact zero evaluates to 0, not NaN.
 
 pub mod parse;
+pub mod scalar;
 pub mod tape;
 pub mod taylor;
 

@@ -6,6 +6,7 @@
 //! form the tape's prelude, evaluated once per run by [`Tape::run_prelude`]; the rest, the body
 //! run per evaluation by [`Tape::run`].
 
+use super::scalar::TapeScalar;
 use super::{Fun, Graph, Id, Node};
 use tumble_jit::{Fn1, Fn2, JitError, Native, Program};
 
@@ -154,23 +155,28 @@ impl Tape {
     }
 
     #[inline]
-    fn exec(code: &[Instr], w: &mut [f64]) {
+    fn exec<S: TapeScalar>(code: &[Instr], w: &mut [S]) {
         for ins in code {
             let x = w[ins.a as usize];
             let y = w[ins.b as usize];
             w[ins.dst as usize] = match ins.op {
-                Op::Const(c) => c,
+                Op::Const(c) => S::of(c),
                 Op::Add => x + y,
                 Op::Sub => x - y,
                 Op::Mul => x * y,
-                Op::Div => x / y,
+                Op::Div => x.quotient(y),
                 Op::Neg => -x,
-                Op::Powi(m) => x.powi(m),
-                Op::Pow => x.powf(y),
-                Op::Atan2 => x.atan2(y),
-                Op::Call(f) => f.apply(x),
+                Op::Powi(m) => x.int_pow(m),
+                Op::Pow => x.real_pow(y),
+                Op::Atan2 => x.atan2_with(y),
+                Op::Call(f) => x.fun(f),
             };
         }
+    }
+
+    /// Runs the prelude in the scalar `S` (for `f64`, as [`Tape::run_prelude`]).
+    pub fn run_prelude_in<S: TapeScalar>(&self, w: &mut [S]) {
+        Self::exec(&self.prelude, w);
     }
 
     /// The body compiled to native code ([`tumble_jit`]), reading the inputs `args[i]` from

@@ -37,6 +37,7 @@
 //!   high-order Taylor methods*, Experimental Mathematics 14 (2005) 99–117.
 
 use super::Fun;
+use super::scalar::TapeScalar;
 use super::tape::{Op, Tape};
 
 /// What the series recursions need of a tape besides its instructions: which operands are
@@ -99,33 +100,40 @@ impl TaylorPlan {
 }
 
 /// The series of every slot of a tape (slot-major: slot `s`, order `k` at `s · stride + k`)
-/// and the auxiliary series, for orders up to `stride − 1`.
+/// and the auxiliary series, for orders up to `stride − 1`, in the scalar `S` (`f64`, or
+/// [`tumble_integrators::taylor::DoubleDouble`] for references).
 #[derive(Debug, Clone)]
-pub struct TaylorWork {
+pub struct TaylorWork<S = f64> {
     stride: usize,
-    series: Vec<f64>,
-    aux: Vec<f64>,
+    series: Vec<S>,
+    aux: Vec<S>,
 }
 
-impl TaylorWork {
+impl<S: TapeScalar> TaylorWork<S> {
     /// Storage for orders `0 ..= max_order` (the one allocation), with the fixed inputs set
     /// from `fixed[k]` (for input `k ≥ varying_inputs`) and the prelude run: constant series.
+    ///
+    /// The prelude (nodes of the parameters only) runs in `S` too: the parameters' values are
+    /// the problem's data, and what is computed from them (an inverse inertia, a frequency) is
+    /// computed in the expansion's precision.
     #[must_use]
     pub fn new(tape: &Tape, plan: &TaylorPlan, fixed: &[f64], max_order: usize) -> Self {
         let stride = max_order + 1;
-        let mut scalar = tape.workspace();
+        let mut scalar = vec![S::ZERO; tape.slots];
         let m = fixed.len().min(tape.inputs);
         let from = plan.varying_inputs.min(m);
-        scalar[from..m].copy_from_slice(&fixed[from..m]);
-        tape.run_prelude(&mut scalar);
-        let mut series = vec![0.0; tape.slots * stride];
+        for (w, v) in scalar[from..m].iter_mut().zip(&fixed[from..m]) {
+            *w = S::of(*v);
+        }
+        tape.run_prelude_in(&mut scalar);
+        let mut series = vec![S::ZERO; tape.slots * stride];
         for (s, v) in scalar.iter().enumerate() {
             series[s * stride] = *v;
         }
         TaylorWork {
             stride,
             series,
-            aux: vec![0.0; plan.aux_len * stride],
+            aux: vec![S::ZERO; plan.aux_len * stride],
         }
     }
 
@@ -137,14 +145,14 @@ impl TaylorWork {
 
     /// Sets coefficient `k` of varying input `input`.
     #[inline]
-    pub fn set_input(&mut self, input: usize, k: usize, value: f64) {
+    pub fn set_input(&mut self, input: usize, k: usize, value: S) {
         self.series[input * self.stride + k] = value;
     }
 
     /// Coefficient `k` of output `i` of `tape`.
     #[inline]
     #[must_use]
-    pub fn output(&self, tape: &Tape, i: usize, k: usize) -> f64 {
+    pub fn output(&self, tape: &Tape, i: usize, k: usize) -> S {
         self.series[tape.outputs[i] as usize * self.stride + k]
     }
 
@@ -154,7 +162,7 @@ impl TaylorWork {
         let st = self.stride;
         let s = &mut self.series;
         let x = &mut self.aux;
-        let kf = k as f64;
+        let kf = S::of(k as f64);
         for (idx, ins) in tape.body.iter().enumerate() {
             let (a, b, d) = (
                 ins.a as usize * st,
@@ -166,9 +174,9 @@ impl TaylorWork {
             let v = match ins.op {
                 Op::Const(c) => {
                     if k == 0 {
-                        c
+                        S::of(c)
                     } else {
-                        0.0
+                        S::ZERO
                     }
                 }
                 Op::Add => s[a + k] + s[b + k],
@@ -185,13 +193,13 @@ impl TaylorWork {
                 }
                 Op::Div => {
                     if cb {
-                        s[a + k] / s[b]
+                        s[a + k].quotient(s[b])
                     } else {
                         let mut acc = s[a + k];
                         for j in 1..=k {
-                            acc -= s[b + j] * s[d + k - j];
+                            acc = acc - s[b + j] * s[d + k - j];
                         }
-                        acc / s[b]
+                        acc.quotient(s[b])
                     }
                 }
                 Op::Powi(n) => powi(s, x, a, d, e, st, n, k),
@@ -199,9 +207,9 @@ impl TaylorWork {
                     // L = ln a at e, M = b L at e + st, u = exp(M).
                     let (l, m) = (e, e + st);
                     if k == 0 {
-                        x[l] = s[a].ln();
+                        x[l] = s[a].fun(Fun::Log);
                         x[m] = s[b] * x[l];
-                        s[a].powf(s[b])
+                        s[a].real_pow(s[b])
                     } else {
                         x[l + k] = log_k(x, l, s, a, k);
                         x[m + k] = if cb {
@@ -209,25 +217,25 @@ impl TaylorWork {
                         } else {
                             cauchy(s, b, x, l, k)
                         };
-                        weighted(x, m, s, d, k) / kf
+                        weighted(x, m, s, d, k).quotient(kf)
                     }
                 }
                 Op::Atan2 => {
                     // y = a, x = b; v = x² + y² at e.
                     if k == 0 {
                         x[e] = s[b] * s[b] + s[a] * s[a];
-                        s[a].atan2(s[b])
+                        s[a].atan2_with(s[b])
                     } else {
                         x[e + k] = cauchy(s, b, s, b, k) + cauchy(s, a, s, a, k);
-                        let mut num = 0.0;
+                        let mut num = S::ZERO;
                         for j in 0..k {
-                            let w = (k - j) as f64;
+                            let w = S::of((k - j) as f64);
                             num += w * (s[b + j] * s[a + k - j] - s[a + j] * s[b + k - j]);
                         }
                         for i in 1..k {
-                            num -= i as f64 * s[d + i] * x[e + k - i];
+                            num = num - S::of(i as f64) * s[d + i] * x[e + k - i];
                         }
-                        num / (kf * x[e])
+                        num.quotient(kf * x[e])
                     }
                 }
                 Op::Call(f) => call(f, s, x, a, d, e, k),
@@ -239,8 +247,8 @@ impl TaylorWork {
 
 /// `Σⱼ₌₀ᵏ pⱼ qₖ₋ⱼ` of the series at `p[i..]` and `q[j..]`.
 #[inline]
-fn cauchy(p: &[f64], i: usize, q: &[f64], j: usize, k: usize) -> f64 {
-    let mut acc = 0.0;
+fn cauchy<S: TapeScalar>(p: &[S], i: usize, q: &[S], j: usize, k: usize) -> S {
+    let mut acc = S::ZERO;
     for m in 0..=k {
         acc += p[i + m] * q[j + k - m];
     }
@@ -249,46 +257,46 @@ fn cauchy(p: &[f64], i: usize, q: &[f64], j: usize, k: usize) -> f64 {
 
 /// `Σⱼ₌₁ᵏ j aⱼ vₖ₋ⱼ` of the series `a` at `p[i..]` and `v` at `q[j..]`: `k uₖ` for `u' = v a'`.
 #[inline]
-fn weighted(p: &[f64], i: usize, q: &[f64], j: usize, k: usize) -> f64 {
-    let mut acc = 0.0;
+fn weighted<S: TapeScalar>(p: &[S], i: usize, q: &[S], j: usize, k: usize) -> S {
+    let mut acc = S::ZERO;
     for m in 1..=k {
-        acc += m as f64 * p[i + m] * q[j + k - m];
+        acc += S::of(m as f64) * p[i + m] * q[j + k - m];
     }
     acc
 }
 
 /// Coefficient `k ≥ 1` of `ln a`, whose lower coefficients are at `u[l..]`, `a` at `s[a..]`.
 #[inline]
-fn log_k(u: &[f64], l: usize, s: &[f64], a: usize, k: usize) -> f64 {
-    let mut acc = 0.0;
+fn log_k<S: TapeScalar>(u: &[S], l: usize, s: &[S], a: usize, k: usize) -> S {
+    let mut acc = S::ZERO;
     for j in 1..k {
-        acc += j as f64 * u[l + j] * s[a + k - j];
+        acc += S::of(j as f64) * u[l + j] * s[a + k - j];
     }
-    (s[a + k] - acc / k as f64) / s[a]
+    (s[a + k] - acc.quotient(S::of(k as f64))).quotient(s[a])
 }
 
 /// Coefficient `k` of `aⁿ` (result at `s[d..]`, the chain `a², …, aⁿ⁻¹` at `x[e..]`).
 #[allow(clippy::too_many_arguments)]
-fn powi(
-    s: &mut [f64],
-    x: &mut [f64],
+fn powi<S: TapeScalar>(
+    s: &mut [S],
+    x: &mut [S],
     a: usize,
     d: usize,
     e: usize,
     st: usize,
     n: i32,
     k: usize,
-) -> f64 {
+) -> S {
     if n < 0 {
         if k == 0 {
-            return s[a].powi(n);
+            return s[a].int_pow(n);
         }
         let r = f64::from(n);
-        let mut acc = 0.0;
+        let mut acc = S::ZERO;
         for j in 0..k {
-            acc += (r * (k - j) as f64 - j as f64) * s[a + k - j] * s[d + j];
+            acc += S::of(r * (k - j) as f64 - j as f64) * s[a + k - j] * s[d + j];
         }
-        return acc / (k as f64 * s[a]);
+        return acc.quotient(S::of(k as f64) * s[a]);
     }
     // n ≥ 2: p₂ = a·a, p_m = p_{m−1}·a; p_m (2 ≤ m < n) at x[e + (m − 2) st].
     let mut prev: Option<usize> = None;
@@ -307,56 +315,57 @@ fn powi(
 }
 
 /// Coefficient `k` of `f(a)` (result at `s[d..]`, its auxiliary series at `x[e..]`).
-fn call(f: Fun, s: &[f64], x: &mut [f64], a: usize, d: usize, e: usize, k: usize) -> f64 {
+fn call<S: TapeScalar>(f: Fun, s: &[S], x: &mut [S], a: usize, d: usize, e: usize, k: usize) -> S {
     let a0 = s[a];
-    let kf = k as f64;
+    let kf = S::of(k as f64);
+    let one = S::of(1.0);
     if k == 0 {
         match f {
-            Fun::Sin => x[e] = a0.cos(),
-            Fun::Cos => x[e] = a0.sin(),
-            Fun::Sinh => x[e] = a0.cosh(),
-            Fun::Cosh => x[e] = a0.sinh(),
+            Fun::Sin => x[e] = a0.fun(Fun::Cos),
+            Fun::Cos => x[e] = a0.fun(Fun::Sin),
+            Fun::Sinh => x[e] = a0.fun(Fun::Cosh),
+            Fun::Cosh => x[e] = a0.fun(Fun::Sinh),
             Fun::Tan => {
-                let u = a0.tan();
-                x[e] = 1.0 + u * u;
+                let u = a0.fun(Fun::Tan);
+                x[e] = one + u * u;
             }
             Fun::Tanh => {
-                let u = a0.tanh();
-                x[e] = 1.0 - u * u;
+                let u = a0.fun(Fun::Tanh);
+                x[e] = one - u * u;
             }
-            Fun::Atan => x[e] = 1.0 + a0 * a0,
-            Fun::Asin | Fun::Acos => x[e] = (1.0 - a0 * a0).sqrt(),
+            Fun::Atan => x[e] = one + a0 * a0,
+            Fun::Asin | Fun::Acos => x[e] = (one - a0 * a0).fun(Fun::Sqrt),
             Fun::Sqrt | Fun::Exp | Fun::Log | Fun::Abs | Fun::Sign => {}
         }
-        return f.apply(a0);
+        return a0.fun(f);
     }
     match f {
-        Fun::Exp => weighted(s, a, s, d, k) / kf,
+        Fun::Exp => weighted(s, a, s, d, k).quotient(kf),
         Fun::Log => log_k(s, d, s, a, k),
         Fun::Sqrt => {
             let mut acc = s[a + k];
             for j in 1..k {
-                acc -= s[d + j] * s[d + k - j];
+                acc = acc - s[d + j] * s[d + k - j];
             }
-            acc / (2.0 * s[d])
+            acc.quotient(S::of(2.0) * s[d])
         }
         Fun::Sin | Fun::Sinh => {
             // u' = c a', c' = ∓u a'.
-            let u = weighted(s, a, x, e, k) / kf;
-            let c = weighted(s, a, s, d, k) / kf;
+            let u = weighted(s, a, x, e, k).quotient(kf);
+            let c = weighted(s, a, s, d, k).quotient(kf);
             x[e + k] = if f == Fun::Sin { -c } else { c };
             u
         }
         Fun::Cos | Fun::Cosh => {
             // For cos: sn' = u a', u' = −sn a'; for cosh: u' = sn a'.
-            let w = weighted(s, a, x, e, k) / kf;
-            x[e + k] = weighted(s, a, s, d, k) / kf;
+            let w = weighted(s, a, x, e, k).quotient(kf);
+            x[e + k] = weighted(s, a, s, d, k).quotient(kf);
             if f == Fun::Cos { -w } else { w }
         }
         Fun::Tan | Fun::Tanh => {
-            let u = weighted(s, a, x, e, k) / kf;
+            let u = weighted(s, a, x, e, k).quotient(kf);
             // v = 1 ± u², its coefficient k from u₀ … uₖ.
-            let mut sq = 2.0 * s[d] * u;
+            let mut sq = S::of(2.0) * s[d] * u;
             for j in 1..k {
                 sq += s[d + j] * s[d + k - j];
             }
@@ -365,33 +374,33 @@ fn call(f: Fun, s: &[f64], x: &mut [f64], a: usize, d: usize, e: usize, k: usize
         }
         Fun::Atan => {
             x[e + k] = cauchy(s, a, s, a, k);
-            let mut acc = 0.0;
+            let mut acc = S::ZERO;
             for i in 1..k {
-                acc += i as f64 * s[d + i] * x[e + k - i];
+                acc += S::of(i as f64) * s[d + i] * x[e + k - i];
             }
-            (s[a + k] - acc / kf) / x[e]
+            (s[a + k] - acc.quotient(kf)).quotient(x[e])
         }
         Fun::Asin | Fun::Acos => {
             // w² = 1 − a².
             let mut acc = -cauchy(s, a, s, a, k);
             for j in 1..k {
-                acc -= x[e + j] * x[e + k - j];
+                acc = acc - x[e + j] * x[e + k - j];
             }
-            x[e + k] = acc / (2.0 * x[e]);
-            let mut sum = 0.0;
+            x[e + k] = acc.quotient(S::of(2.0) * x[e]);
+            let mut sum = S::ZERO;
             for i in 1..k {
-                sum += i as f64 * s[d + i] * x[e + k - i];
+                sum += S::of(i as f64) * s[d + i] * x[e + k - i];
             }
             let ak = if f == Fun::Asin { s[a + k] } else { -s[a + k] };
-            (ak - sum / kf) / x[e]
+            (ak - sum.quotient(kf)).quotient(x[e])
         }
         Fun::Abs => {
             let sign = (0..=k)
-                .map(|j| s[a + j])
+                .map(|j| s[a + j].leading())
                 .find(|c| *c != 0.0)
                 .map_or(0.0, f64::signum);
-            sign * s[a + k]
+            S::of(sign) * s[a + k]
         }
-        Fun::Sign => 0.0,
+        Fun::Sign => S::ZERO,
     }
 }

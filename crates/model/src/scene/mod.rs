@@ -4,7 +4,8 @@
 //! its compositions) and the Taylor methods ([`tumble_integrators::ProblemKind::TaylorSeries`]: coefficients by
 //! automatic differentiation on the tape, [`crate::taylor`]; on a model with orientations on
 //! SO(3), up to [`crate::file::MAX_SO3_FRAMES`], on the tape of its first-order system, each
-//! rotation matrix a point of ℝ⁹).
+//! rotation matrix a point of ℝ⁹; `taylor-dd` the same in double-double,
+//! [`tumble_integrators::ProblemKind::DoubleDoubleTaylorSeries`]).
 //!
 //! The state is `(q, q̇)`; each evaluation of the right-hand side runs one instruction tape
 //! ([`crate::expr::tape`]) in a workspace allocated once per run: the forces, the kinematics

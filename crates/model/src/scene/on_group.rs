@@ -27,6 +27,7 @@ const FREE_BODY: &[ProblemKind] = &[
     ProblemKind::LieVectorField,
     ProblemKind::Ode,
     ProblemKind::TaylorSeries,
+    ProblemKind::DoubleDoubleTaylorSeries,
 ];
 
 /// … in a potential: as the built-in `heavy-top`.
@@ -35,6 +36,7 @@ const RIGID_BODY: &[ProblemKind] = &[
     ProblemKind::LieVectorField,
     ProblemKind::Ode,
     ProblemKind::TaylorSeries,
+    ProblemKind::DoubleDoubleTaylorSeries,
 ];
 
 /// … coupled to scalar coordinates: as the built-in `free-hoop`.
@@ -42,6 +44,7 @@ const COUPLED: &[ProblemKind] = &[
     ProblemKind::CoupledRigidBody,
     ProblemKind::Ode,
     ProblemKind::TaylorSeries,
+    ProblemKind::DoubleDoubleTaylorSeries,
 ];
 
 /// … with several orientations on SO(3): a vector field on their product, for the Lie-group
@@ -50,10 +53,15 @@ const PRODUCT: &[ProblemKind] = &[
     ProblemKind::ProductVectorField,
     ProblemKind::Ode,
     ProblemKind::TaylorSeries,
+    ProblemKind::DoubleDoubleTaylorSeries,
 ];
 
 /// … without a Lie-group kind: the first-order system and its Taylor series.
-const FLAT: &[ProblemKind] = &[ProblemKind::Ode, ProblemKind::TaylorSeries];
+const FLAT: &[ProblemKind] = &[
+    ProblemKind::Ode,
+    ProblemKind::TaylorSeries,
+    ProblemKind::DoubleDoubleTaylorSeries,
+];
 
 /// The kinds a model offers at its default parameters, and why the Lie-group methods that do
 /// not run it do not (`None` when they all do).

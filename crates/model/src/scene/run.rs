@@ -42,7 +42,8 @@ impl ModelScene {
 
     /// Runs the first-order system `y' = F(t, y)` of the state `(q, R₁ … R_k, q̇, ω₁ … ω_k)`
     /// (each rotation as nine numbers) with the plan's vector-space method: an explicit pair,
-    /// Gauss–Legendre and its compositions, or the Taylor method. A Lie-group method reaching
+    /// Gauss–Legendre and its compositions, or the Taylor methods (`taylor`, and `taylor-dd` in
+    /// double-double). A Lie-group method reaching
     /// here (a model with several orientations on SO(3)) is refused with why.
     pub(super) fn run_flat<const S: usize>(
         &self,
@@ -68,7 +69,10 @@ impl ModelScene {
         let energy = 1 + self.display.len();
         let row = self.row_writer::<S>(params);
         let y = SVector::<f64, S>::from_column_slice(y0);
-        if plan.kind == ProblemKind::TaylorSeries {
+        if matches!(
+            plan.kind,
+            ProblemKind::TaylorSeries | ProblemKind::DoubleDoubleTaylorSeries
+        ) {
             let taylor = self.taylor(params);
             run_taylor_vector(&taylor, y, plan, columns, energy, row, &mut [], recorder)
         } else {

@@ -2,6 +2,7 @@
 //! built-in twins and against independent closed forms, and the model parser under mutation.
 
 mod carried;
+mod double_double;
 mod drawing;
 mod expr;
 mod fuzz;
