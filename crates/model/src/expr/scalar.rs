@@ -11,8 +11,8 @@
 //! |---|---|
 //! | `√a` | `y = √a_hi`, one Newton step `y + (a − y²)/(2y)` with `y²` exact |
 //! | `eᵃ` | `a = k ln 2 + r` (`ln 2` in three parts, Cody & Waite 1980), `expm1(r/2¹⁰)` by its series, doubled ten times by `expm1(2x) = expm1(x)(expm1(x) + 2)`, times `2ᵏ` |
-//! | `ln a` | `y = ln a_hi`, one Newton step `y + a e⁻ʸ − 1` |
-//! | `sin a`, `cos a` | `a = k π/2 + r` (`π/2` in three parts), `|r| ≤ π/4`, the two series in `r`, the quadrant from `k mod 4` |
+//! | `ln a` | `a = m 2ᵏ`, `y = ln m_hi`, one Newton step `y + (m − 1 − expm1 y)/(1 + expm1 y)`, plus `k ln 2` |
+//! | `sin a`, `cos a` | `a = k π/2 + r` (`π/2` in three parts), `|r| ≤ π/4`, the two series in `r`, the quadrant from `k mod 4`; NaN beyond `|a| = 10¹⁵` |
 //! | `atan2(y, x)` | `θ = atan2(y_hi, x_hi)`, one Newton step on `x sin θ − y cos θ = 0` |
 //! | `atan`, `asin`, `acos` | `atan2(a, 1)`, `atan2(a, √((1 − a)(1 + a)))`, `atan2(√((1 − a)(1 + a)), a)` |
 //! | `sinh`, `cosh`, `tanh` | from `eᵃ`; `sinh` by its series where `|a| < ½` |
@@ -143,8 +143,12 @@ impl TapeScalar for DoubleDouble {
         }
         // A base ≤ 0: an integer exponent is a power; otherwise the value of `f64::powf`
         // (0, ±∞ or NaN).
-        if b.lo() == 0.0 && b.hi().fract() == 0.0 && b.hi().abs() <= f64::from(i32::MAX) {
+        let integer = b.lo() == 0.0 && b.hi().fract() == 0.0;
+        if integer && b.hi().abs() <= f64::from(i32::MAX) {
             return self.int_pow(b.hi() as i32);
+        }
+        if self.hi() < 0.0 && !integer {
+            return nan();
         }
         DoubleDouble::of(self.hi().powf(b.hi()))
     }
@@ -153,8 +157,16 @@ impl TapeScalar for DoubleDouble {
         let y = self;
         let theta = y.hi().atan2(x.hi());
         if !(y.is_finite() && x.is_finite()) || (y.hi() == 0.0 && x.hi() == 0.0) {
-            return DoubleDouble::of(theta);
+            // At an infinity or at the origin the angle is a multiple of π/4 (or NaN).
+            if theta.is_nan() {
+                return nan();
+            }
+            let j = (theta / std::f64::consts::FRAC_PI_4).round();
+            return ldexp(DoubleDouble::new_add(FRAC_PI_2[0], FRAC_PI_2[1]), -1) * j;
         }
+        // Scaled by a power of two, so that x cos θ + y sin θ cannot overflow.
+        let scale = -(x.hi().abs().max(y.hi().abs()).log2().floor() as i32);
+        let (x, y) = (ldexp(x, scale), ldexp(y, scale));
         // One Newton step on g(θ) = x sin θ − y cos θ, g'(θ) = x cos θ + y sin θ > 0 near
         // the root.
         let t = DoubleDouble::of(theta);
@@ -235,41 +247,70 @@ pub fn sqrt(a: DoubleDouble) -> DoubleDouble {
     DoubleDouble::of(y) + (a - DoubleDouble::new_mul(y, y)).quotient(DoubleDouble::of(2.0 * y))
 }
 
+/// `ln(f64::MAX)`: above it `eᵃ` overflows.
+const EXP_MAX: f64 = 709.782_712_893_384;
+
 /// `eᵃ`.
 pub fn exp(a: DoubleDouble) -> DoubleDouble {
     if !a.hi().is_finite() {
         return DoubleDouble::of(a.hi().exp());
     }
-    if a.hi() > 709.78 {
+    if a.hi() > EXP_MAX {
         return DoubleDouble::of(f64::INFINITY);
     }
     if a.hi() < -745.2 {
         return DoubleDouble::of(0.0);
     }
     let k = (a.hi() / LN2[0]).round();
-    let r = ldexp(reduce(a, k, &LN2), -10);
-    // expm1(r), |r| ≤ 3.4e-4: 12 terms at most.
+    ldexp(
+        expm1_reduced(reduce(a, k, &LN2)) + DoubleDouble::of(1.0),
+        k as i32,
+    )
+}
+
+/// `eʳ − 1` for `|r| ≤ ln 2` (relative to about `2⁻¹⁰⁴`, also near 0): the series of `r/2¹⁰`
+/// (at most 12 terms), doubled ten times by `expm1(2x) = expm1(x)(expm1(x) + 2)`.
+fn expm1_reduced(r: DoubleDouble) -> DoubleDouble {
+    let r = ldexp(r, -10);
     let mut m = series(r, |term, n| {
         (term * r).quotient(DoubleDouble::of(f64::from(n + 1)))
     });
     for _ in 0..10 {
         m = m * (m + DoubleDouble::of(2.0));
     }
-    ldexp(m + DoubleDouble::of(1.0), k as i32)
+    m
 }
 
-/// `ln a`.
+/// `ln a`: `a = m 2ᵏ` with `m ∈ [1/√2, √2]`, `ln a = ln m + k ln 2` (`ln 2` in three parts),
+/// and `ln m` by one Newton step from `y = ln m_hi` written with `expm1`:
+/// `y + (m − 1 − expm1 y)/(1 + expm1 y)`, relative to about `2⁻¹⁰⁴` also near `m = 1`.
 pub fn ln(a: DoubleDouble) -> DoubleDouble {
     if !(a.hi() > 0.0) || !a.hi().is_finite() {
         return DoubleDouble::of(a.hi().ln());
     }
-    let y = DoubleDouble::of(a.hi().ln());
-    y + a * exp(-y) - DoubleDouble::of(1.0)
+    let k = (a.hi().log2() + 0.5).floor();
+    let m = ldexp(a, -(k as i32));
+    let y = m.hi().ln();
+    let e = expm1_reduced(DoubleDouble::of(y));
+    let one = DoubleDouble::of(1.0);
+    let ln_m = DoubleDouble::of(y) + (m - one - e).quotient(one + e);
+    if k == 0.0 {
+        return ln_m;
+    }
+    DoubleDouble::new_mul(k, LN2[0])
+        + DoubleDouble::new_mul(k, LN2[1])
+        + DoubleDouble::of(k * LN2[2])
+        + ln_m
 }
+
+/// Above this magnitude the argument reduction of [`sin_cos`] by `π/2` in three parts loses
+/// double-double accuracy (its error is about `|a| · 10⁻⁴⁹`), and the angle is refused (NaN,
+/// which the Taylor methods report as a non-finite coefficient).
+pub const SIN_COS_MAX: f64 = 1e15;
 
 /// `(sin a, cos a)`.
 pub fn sin_cos(a: DoubleDouble) -> (DoubleDouble, DoubleDouble) {
-    if !a.is_finite() {
+    if !a.is_finite() || a.hi().abs() > SIN_COS_MAX {
         return (nan(), nan());
     }
     let k = (a.hi() / FRAC_PI_2[0]).round();
