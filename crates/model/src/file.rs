@@ -72,14 +72,14 @@ use std::collections::HashMap;
 use std::path::Path;
 
 use toml::Spanned;
-use tumble_scenarios::body_table::read_body;
-use tumble_scenarios::params::Domain;
 use tumble_scenarios::toml_file::{self, Location};
 
 mod decl;
 mod drawn;
 mod error;
 mod frames;
+mod masses;
+mod params;
 mod raw;
 mod reader;
 
@@ -87,9 +87,11 @@ pub use decl::{Orientation, ParamDef, RunDefaults};
 pub use drawn::{DrawnBody, DrawnPoint, ModelDrawing};
 pub use error::ModelFileError;
 use frames::{Placed, frame_names, read_links, so3_frame};
+use masses::{Energy, mass_properties};
+use params::read_parameter;
 
 use raw::{RawFile, ordered};
-use reader::{Names, Src, check_name, domain, run_defaults};
+use reader::{Names, Src, check_name, run_defaults};
 
 use crate::expr::{Graph, Id};
 use crate::mechanics::{Algebra, Chain, Equations, Layout, V3, equations};
@@ -194,60 +196,7 @@ impl Model {
         for (name, value) in ordered(raw.parameters) {
             let key = format!("parameters.{}", name.get_ref());
             claim(&src, &key, &name)?;
-            let def = match value.get_ref() {
-                toml::Value::Table(t) => {
-                    for k in t.keys() {
-                        if !["default", "unit", "domain", "description"].contains(&k.as_str()) {
-                            return Err(src.invalid(&value.span(), &format!("{key}.{k}"), "unknown key; a parameter takes `default`, `unit`, `domain` and `description`"));
-                        }
-                    }
-                    let Some(d) = t.get("default") else {
-                        return Err(src.invalid(&value.span(), &key, "needs a `default` value"));
-                    };
-                    let default = toml_file::number_or_angle(d).map_err(|found| {
-                        src.invalid(
-                            &value.span(),
-                            &format!("{key}.default"),
-                            format!("must be a number, found {found}"),
-                        )
-                    })?;
-                    let text_of = |k: &str| -> Result<String, ModelFileError> {
-                        match t.get(k) {
-                            None => Ok(String::new()),
-                            Some(toml::Value::String(s)) => Ok(s.clone()),
-                            Some(other) => Err(src.invalid(
-                                &value.span(),
-                                &format!("{key}.{k}"),
-                                format!("must be a string, found {}", toml_file::describe(other)),
-                            )),
-                        }
-                    };
-                    let dom = text_of("domain")?;
-                    let domain = if dom.is_empty() {
-                        Domain::Finite
-                    } else {
-                        domain(&dom).ok_or_else(|| src.invalid(&value.span(), &format!("{key}.domain"), format!("unknown domain {dom:?}; write \"positive\", \"non-negative\", \"finite\" or \"non-zero\"")))?
-                    };
-                    let unit = text_of("unit")?;
-                    units::parse_unit(&unit).map_err(|message| {
-                        src.invalid(&value.span(), &format!("{key}.unit"), message)
-                    })?;
-                    ParamDef {
-                        name: name.get_ref().clone(),
-                        default,
-                        unit,
-                        domain,
-                        description: text_of("description")?,
-                    }
-                }
-                _ => ParamDef {
-                    name: name.get_ref().clone(),
-                    default: src.number(&key, &value)?,
-                    unit: String::new(),
-                    domain: Domain::Finite,
-                    description: String::new(),
-                },
-            };
+            let def = read_parameter(&src, &key, &name, &value)?;
             if !def.domain.contains(def.default) {
                 return Err(src.invalid(
                     &value.span(),
@@ -483,56 +432,17 @@ impl Model {
         };
 
         // Kinetic and potential energy.
-        let mut kinetic_terms: Vec<Id> = Vec::new();
-        let mut potential_terms: Vec<Id> = Vec::new();
         let extra = raw.lagrangian.unwrap_or_default();
         let gravity = match &extra.gravity {
             Some(g) => Some(src.vector("lagrangian.gravity", g, &mut graph, &scope)?),
             None => None,
         };
-        // ½ m |ṙ + Ω × r|² and −m g·r for a mass at r (model frame). For a mass at
-        // `r = origin + R x` carried by an orientation on SO(3) (`on_so3 = Some((ω, x, origin))`)
-        // about a fixed origin in a model frame that does not turn, |ṙ| = |ω × x + ẋ|: the
-        // same value on SO(3), written without R, so that the kinetic energy and the mass
-        // matrix do not depend on the orientation (as a body's does not).
-        let translational = |graph: &mut Graph,
-                             mass: Id,
-                             r: V3,
-                             on_so3: Option<(V3, V3, V3)>,
-                             kinetic: &mut Vec<Id>,
-                             potential: &mut Vec<Id>| {
-            let mut alg = Algebra { g: graph };
-            let body_frame = on_so3.filter(|(_, _, origin)| {
-                alg_frame_omega.is_none()
-                    && alg
-                        .time_derivative3(*origin, layout)
-                        .iter()
-                        .all(|d| alg.g.as_const(*d) == Some(0.0))
-            });
-            let v = match body_frame {
-                Some((w, x, _)) => {
-                    let xd = alg.time_derivative3(x, layout);
-                    let wx = alg.cross(w, x);
-                    alg.add3(wx, xd)
-                }
-                None => {
-                    let mut v = alg.time_derivative3(r, layout);
-                    if let Some(w) = alg_frame_omega {
-                        let wr = alg.cross(w, r);
-                        v = alg.add3(v, wr);
-                    }
-                    v
-                }
-            };
-            let v2 = alg.dot(v, v);
-            let half = alg.g.constant(0.5);
-            let hm = alg.g.mul(half, mass);
-            kinetic.push(alg.g.mul(hm, v2));
-            if let Some(g) = gravity {
-                let gr = alg.dot(g, r);
-                let mgr = alg.g.mul(mass, gr);
-                potential.push(alg.g.neg(mgr));
-            }
+        let mut energy = Energy {
+            kinetic: Vec::new(),
+            potential: Vec::new(),
+            gravity,
+            frame_omega: alg_frame_omega,
+            layout,
         };
         let mut drawing = ModelDrawing::default();
         for (name, b) in ordered(raw.bodies) {
@@ -543,79 +453,8 @@ impl Model {
                 Some(o) => src.vector(&format!("{key}.origin"), o, &mut graph, &scope)?,
                 None => [zero; 3],
             };
-            let (mass, com, inertia, parts) = match &b.geometry {
-                Some(geometry) => {
-                    for (k, present) in [
-                        ("mass", b.mass.is_some()),
-                        ("com", b.com.is_some()),
-                        ("inertia", b.inertia.is_some()),
-                    ] {
-                        if present {
-                            return Err(src.invalid(
-                                &geometry.span(),
-                                &format!("{key}.{k}"),
-                                "is computed from `geometry`; give one or the other",
-                            ));
-                        }
-                    }
-                    let (props, parts) =
-                        read_body(src.origin, src.text, geometry).map_err(|e| {
-                            ModelFileError::Invalid {
-                                at: e.at,
-                                key: format!("{key}.geometry: {}", e.key),
-                                message: e.message,
-                                excerpt: String::new(),
-                            }
-                        })?;
-                    let c = props.center_of_mass();
-                    let i = props.inertia();
-                    let m = graph.constant(props.mass());
-                    let com = [c.x, c.y, c.z].map(|x| graph.constant(x));
-                    let mut inertia = [[zero; 3]; 3];
-                    for r in 0..3 {
-                        for s in 0..3 {
-                            inertia[r][s] = graph.constant(i[(r, s)]);
-                        }
-                    }
-                    (m, com, inertia, Some(parts))
-                }
-                None => {
-                    let Some(mass) = &b.mass else {
-                        return Err(src.invalid(&name.span(), &key, "needs a `mass` (with `inertia` and `com`) or a `geometry` table (the [body] vocabulary: mesh, points, shapes)"));
-                    };
-                    let mass = src.expr(&format!("{key}.mass"), mass, &mut graph, &param_scope)?;
-                    let com = match &b.com {
-                        Some(c) => {
-                            src.vector(&format!("{key}.com"), c, &mut graph, &param_scope)?
-                        }
-                        None => [zero; 3],
-                    };
-                    let mut inertia = [[zero; 3]; 3];
-                    if let Some(list) = &b.inertia {
-                        let ik = format!("{key}.inertia");
-                        let v: Vec<Id> = list
-                            .get_ref()
-                            .iter()
-                            .enumerate()
-                            .map(|(k, x)| {
-                                src.expr(&format!("{ik}[{}]", k + 1), x, &mut graph, &param_scope)
-                            })
-                            .collect::<Result<_, _>>()?;
-                        match v.len() {
-                            3 => (0..3).for_each(|k| inertia[k][k] = v[k]),
-                            6 => {
-                                (0..3).for_each(|k| inertia[k][k] = v[k]);
-                                for (k, (r, s)) in [(0, 1), (0, 2), (1, 2)].into_iter().enumerate() {
-                                    inertia[r][s] = v[3 + k];
-                                    inertia[s][r] = v[3 + k];
-                                }
-                            }
-                            found => return Err(src.invalid(&list.span(), &ik, format!("must be 3 principal moments or 6 entries [xx, yy, zz, xy, xz, yz] about the centre of mass, found {found}"))),
-                        }
-                    }
-                    (mass, com, inertia, None)
-                }
-            };
+            let (mass, com, inertia, parts) =
+                mass_properties(&src, &key, &name, b, &mut graph, &param_scope)?;
             // The body's frame's origin in the model frame: `origin` plus its frame's own.
             let origin = match &frame {
                 Some(placed) => {
@@ -657,20 +496,9 @@ impl Model {
                 let (w, x, root_origin) = placed.in_root(&mut alg, com)?;
                 Some((w, x, alg.add3(body_origin, root_origin)))
             });
-            translational(
-                &mut graph,
-                mass,
-                rc,
-                on_so3,
-                &mut kinetic_terms,
-                &mut potential_terms,
-            );
+            energy.translational(&mut graph, mass, rc, on_so3);
             if let Some(w) = omega {
-                let mut alg = Algebra { g: &mut graph };
-                let iw = alg.mat_vec(&inertia, w);
-                let wiw = alg.dot(w, iw);
-                let half = alg.g.constant(0.5);
-                kinetic_terms.push(alg.g.mul(half, wiw));
+                energy.rotational(&mut graph, &inertia, w);
             }
         }
         for (name, p) in ordered(raw.points) {
@@ -701,17 +529,12 @@ impl Model {
                 mass,
                 position: r,
             });
-            translational(
-                &mut graph,
-                mass,
-                r,
-                on_so3,
-                &mut kinetic_terms,
-                &mut potential_terms,
-            );
+            energy.translational(&mut graph, mass, r, on_so3);
         }
         if let Some(v) = &extra.potential {
-            potential_terms.push(src.expr("lagrangian.potential", v, &mut graph, &scope)?);
+            energy
+                .potential
+                .push(src.expr("lagrangian.potential", v, &mut graph, &scope)?);
         }
         let mut rate_scope = Names {
             map: scope.map.clone(),
@@ -725,7 +548,9 @@ impl Model {
             rate_scope.insert(name, *id);
         }
         if let Some(v) = &extra.kinetic {
-            kinetic_terms.push(src.expr("lagrangian.kinetic", v, &mut graph, &rate_scope)?);
+            energy
+                .kinetic
+                .push(src.expr("lagrangian.kinetic", v, &mut graph, &rate_scope)?);
         }
         let mut outputs = Vec::new();
         for (name, v) in ordered(raw.outputs) {
@@ -751,8 +576,8 @@ impl Model {
                     .map_err(|message| src.invalid(span, key, message))?;
             }
         }
-        let kinetic = graph.sum(&kinetic_terms);
-        let potential = graph.sum(&potential_terms);
+        let kinetic = graph.sum(&energy.kinetic);
+        let potential = graph.sum(&energy.potential);
         let lagrangian = graph.sub(kinetic, potential);
         let equations = equations(&mut graph, lagrangian, layout);
         graph
