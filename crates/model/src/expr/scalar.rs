@@ -90,17 +90,13 @@ impl TapeScalar for DoubleDouble {
             }
             Fun::Atan => self.atan2_with(DoubleDouble::of(1.0)),
             Fun::Sinh => sinh(self),
-            Fun::Cosh => {
-                let e = exp(abs(self));
-                (e + DoubleDouble::of(1.0).quotient(e)) * 0.5
-            }
+            Fun::Cosh => cosh(self),
             Fun::Tanh => {
                 if self.hi().abs() > 40.0 {
                     // 1 − tanh|a| < 2e-35.
                     return DoubleDouble::of(self.hi().signum());
                 }
-                let e = exp(abs(self));
-                sinh(self).quotient((e + DoubleDouble::of(1.0).quotient(e)) * 0.5)
+                sinh(self).quotient(cosh(self))
             }
             Fun::Exp => exp(self),
             Fun::Log => ln(self),
@@ -329,6 +325,12 @@ pub fn sin_cos(a: DoubleDouble) -> (DoubleDouble, DoubleDouble) {
         2 => (-s, -c),
         _ => (-c, s),
     }
+}
+
+/// `cosh a`, from `e^|a|`.
+fn cosh(a: DoubleDouble) -> DoubleDouble {
+    let e = exp(abs(a));
+    (e + DoubleDouble::of(1.0).quotient(e)) * 0.5
 }
 
 /// `sinh a`.
