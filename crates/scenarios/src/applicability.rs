@@ -79,6 +79,7 @@ impl SceneInfo {
                     ProblemKind::FreeRigidBody,
                     ProblemKind::LieVectorField,
                     ProblemKind::ProductVectorField,
+                    ProblemKind::ProductLagrangian,
                     ProblemKind::CoupledRigidBody,
                 ];
                 if !self.not_on_group.is_empty() && m.problems.iter().all(|k| on_group.contains(k))

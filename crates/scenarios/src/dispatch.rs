@@ -20,6 +20,7 @@
 //! | [`ProblemKind::FreeRigidBody`] | [`FreeRigidBody`] | discrete Moser–Veselov, the exact flow |
 //! | [`ProblemKind::LieVectorField`] | Euler's equations as a vector field on SO(3) × ℝ³ | RKMK, Crouch–Grossman |
 //! | [`ProblemKind::ProductVectorField`] | a vector field on SO(3)ᴹ × ℝⁿ ([`ProductVectorField`]: several orientations) | RKMK, Crouch–Grossman |
+//! | [`ProblemKind::ProductLagrangian`] | the same state's Lagrangian by its derivatives ([`ProductLagrangian`]) | the LGVI on the product and its compositions (orders 4–10) |
 //! | [`ProblemKind::CoupledRigidBody`] | [`CoupledLagrangian`] on SO(3) × ℝⁿ | the coupled LGVI and its compositions (orders 4–10) |
 //! | [`ProblemKind::Separable`] | [`SeparableHamiltonian`] `H = T(p) + V(q)` on ℝ²ᵈ | symplectic Euler, Störmer–Verlet, and the composition tables named alone (orders 4–10), which compose Störmer–Verlet |
 //! | [`ProblemKind::Split`] | the same Hamiltonian as its drift and kick ([`HamiltonianSplit`]) | Strang splitting |
@@ -31,8 +32,8 @@
 use nalgebra::SVector;
 use tumble_integrators::registry::build::{self, NoStepper, Receive, ReceiveOde};
 use tumble_integrators::rigid::{
-    CoupledLagrangian, CoupledState, EulerEquations, FreeRigidBody, GroupState, ProductState,
-    ProductVectorField, RigidBody, RigidBodyState,
+    CoupledLagrangian, CoupledState, EulerEquations, FreeRigidBody, GroupState, ProductLagrangian,
+    ProductState, ProductVectorField, RigidBody, RigidBodyState,
 };
 use tumble_integrators::{
     AdaptiveStepper, Counted, DenseOutput, Driver, Event, HamiltonianSplit, Observer, Ode, Order,
@@ -384,31 +385,37 @@ where
     })
 }
 
-/// Integrates a vector field on the product `SO(3)ᴹ × ℝᴺ` ([`ProblemKind::ProductVectorField`])
-/// from `state` over the plan's horizon.
+/// Integrates a system on the product `SO(3)ᴹ × ℝᴺ` from `state` over the plan's horizon: as
+/// its vector field ([`ProblemKind::ProductVectorField`]) or its Lagrangian
+/// ([`ProblemKind::ProductLagrangian`]), as the plan's kind says.
 ///
 /// # Errors
 /// Integration failures.
 pub fn run_product<F, O, const M: usize, const N: usize>(
-    field: &F,
+    system: &F,
     state: &mut ProductState<M, N>,
     plan: &RunPlan,
     observer: &mut O,
 ) -> Result<Outcome, SceneError>
 where
-    F: ProductVectorField<M, N>,
+    F: ProductVectorField<M, N> + ProductLagrangian<M, N>,
     O: Observer<ProductState<M, N>>,
 {
-    if plan.kind != ProblemKind::ProductVectorField {
-        return Err(no_stepper(plan, plan.kind.name()));
-    }
     let run = FixedRun {
-        problem: field,
+        problem: system,
         state,
         plan,
         observer,
     };
-    let report = build::product_vector_field::<F, _, M, N>(plan.method, run)??;
+    let report = match plan.kind {
+        ProblemKind::ProductVectorField => {
+            build::product_vector_field::<F, _, M, N>(plan.method, run)??
+        }
+        ProblemKind::ProductLagrangian => {
+            build::product_lagrangian::<F, _, M, N>(plan.method, run)??
+        }
+        kind => return Err(no_stepper(plan, kind.name())),
+    };
     Ok(Outcome {
         t: report.t,
         steps: report.steps,

@@ -2,7 +2,7 @@
 //! a kind of problem, handed to a receiver that runs it.
 //!
 //! One function per [`ProblemKind`] ([`ode`], [`taylor`], [`rigid_body`], [`free_rigid_body`],
-//! [`lie_vector_field`], [`product_vector_field`], [`coupled`], [`separable`], [`split`]) matches every [`Stepping`]
+//! [`lie_vector_field`], [`product_vector_field`], [`product_lagrangian`], [`coupled`], [`separable`], [`split`]) matches every [`Stepping`]
 //! without a wildcard: a new family is a compile error here until each kind says whether it
 //! runs it. A new table of an existing family (an explicit pair, a Gauss table, a composition)
 //! needs nothing here — its registry row carries the table. The caller supplies a receiver
@@ -22,8 +22,8 @@ use crate::problem::{Ode, SeparableHamiltonian, SplitOde};
 use crate::rigid::{
     CoupledLagrangian, CoupledLgvi, CoupledLieGauss, CoupledState, Dmv, ExactSplitting,
     ExactStepper, FreeRigidBody, GroupState, Lgvi, LieGauss, LieVectorField,
-    PrincipalAxisSplitting, ProductState, ProductVectorField, RigidBody, RigidBodyState, cg3,
-    product_cg3, product_rkmk4, rkmk4,
+    PrincipalAxisSplitting, ProductLagrangian, ProductLgvi, ProductState, ProductVectorField,
+    RigidBody, RigidBodyState, cg3, product_cg3, product_rkmk4, rkmk4,
 };
 use crate::state::{State, VectorState};
 use crate::stepper::{AdaptiveStepper, DenseOutput, Stepper};
@@ -338,6 +338,47 @@ where
         | Stepping::ExactFlow
         | Stepping::Taylor(_)
         | Stepping::TaylorDoubleDouble => NoStepper::of(method, ProblemKind::CoupledRigidBody),
+    }
+}
+
+/// Builds `method`'s stepper for a Lagrangian `L` on the product `SO(3)ᴹ × ℝⁿ` (`N = 2n + 3M`
+/// numbers beside the rotations) and hands it to `receiver`.
+///
+/// # Errors
+/// [`NoStepper`] when the method does not integrate Lagrangians on the product.
+pub fn product_lagrangian<L, R, const M: usize, const N: usize>(
+    method: &MethodInfo,
+    receiver: R,
+) -> Result<R::Output, NoStepper>
+where
+    L: ProductLagrangian<M, N> + ?Sized,
+    R: Receive<L, ProductState<M, N>>,
+{
+    match method.stepping {
+        Stepping::Lgvi => Ok(receiver.receive(ProductLgvi::<M, N>::new())),
+        Stepping::Composition { table, base } => match base.stepper {
+            BaseStepper::Lgvi => {
+                Ok(receiver.receive(Composition::new(table, ProductLgvi::<M, N>::new())))
+            }
+            BaseStepper::StormerVerlet
+            | BaseStepper::PrincipalAxisSplitting
+            | BaseStepper::ExactSplitting
+            | BaseStepper::Gauss2 => NoStepper::of(method, ProblemKind::ProductLagrangian),
+        },
+        Stepping::Explicit(_)
+        | Stepping::Gauss(_)
+        | Stepping::SymplecticEuler
+        | Stepping::StormerVerlet
+        | Stepping::Strang
+        | Stepping::LieGauss(_)
+        | Stepping::Rkmk4
+        | Stepping::Cg3
+        | Stepping::PrincipalAxisSplitting
+        | Stepping::ExactSplitting
+        | Stepping::Dmv
+        | Stepping::ExactFlow
+        | Stepping::Taylor(_)
+        | Stepping::TaylorDoubleDouble => NoStepper::of(method, ProblemKind::ProductLagrangian),
     }
 }
 

@@ -114,6 +114,10 @@ pub enum ProblemKind {
     /// A vector field on the product `SO(3)ᴹ × ℝⁿ` of several orientations,
     /// `Ṙₖ = Rₖ hat ξₖ(t, R, y)`, `ẏ = f(t, R, y)` ([`crate::rigid::ProductVectorField`]).
     ProductVectorField,
+    /// A Lagrangian on the product `SO(3)ᴹ × ℝⁿ` given by its derivatives
+    /// ([`crate::rigid::ProductLagrangian`]): several orientations whose kinetic energy
+    /// couples them.
+    ProductLagrangian,
     /// A rigid body: inertia and a potential with its moment ([`crate::rigid::RigidBody`]).
     RigidBody,
     /// A torque-free rigid body ([`crate::rigid::FreeRigidBody`]).
@@ -139,6 +143,7 @@ impl ProblemKind {
             ProblemKind::Split => "split",
             ProblemKind::LieVectorField => "lie-vector-field",
             ProblemKind::ProductVectorField => "product-vector-field",
+            ProblemKind::ProductLagrangian => "product-lagrangian",
             ProblemKind::RigidBody => "rigid-body",
             ProblemKind::FreeRigidBody => "free-rigid-body",
             ProblemKind::CoupledRigidBody => "coupled-rigid-body",
@@ -443,7 +448,7 @@ pub const ROWS: &[MethodInfo] = &[
     MethodInfo::new(
         "lgvi",
         Stepping::Lgvi,
-        "Lie group variational integrator (Lee, Leok & McClamroch 2005/2007), Newton on the Cayley vector",
+        "Lie group variational integrator (Lee, Leok & McClamroch 2005/2007), Newton on the Cayley vector; on several orientations, the trapezoidal discrete Lagrangian in exponential coordinates",
     ),
     short(
         "lgvi4",

@@ -259,6 +259,12 @@ const LIE_FIELD: &str =
     "vector field on SO(3) × R^n or SO(3)^m × R^n: R_k' = R_k hat(xi_k(t, R, y)), y' = f(t, R, y)";
 
 const RIGID_KINDS: &[ProblemKind] = &[ProblemKind::RigidBody, ProblemKind::CoupledRigidBody];
+/// The LGVI's: the rigid kinds, and a Lagrangian on the product of several rotation groups.
+const LGVI_KINDS: &[ProblemKind] = &[
+    ProblemKind::RigidBody,
+    ProblemKind::CoupledRigidBody,
+    ProblemKind::ProductLagrangian,
+];
 
 impl Stepping {
     /// Order of convergence: the table's where there is one.
@@ -385,7 +391,8 @@ impl Stepping {
             Stepping::SymplecticEuler | Stepping::StormerVerlet => &[ProblemKind::Separable],
             Stepping::Strang => &[ProblemKind::Split],
             Stepping::Composition { base, .. } => base.problems,
-            Stepping::Lgvi | Stepping::LieGauss(_) => RIGID_KINDS,
+            Stepping::Lgvi => LGVI_KINDS,
+            Stepping::LieGauss(_) => RIGID_KINDS,
             Stepping::PrincipalAxisSplitting | Stepping::ExactSplitting => {
                 &[ProblemKind::RigidBody]
             }
@@ -413,7 +420,7 @@ pub const LGVI_BASE: Base = Base {
     name: "lgvi",
     stepper: BaseStepper::Lgvi,
     problem: RIGID_BODY,
-    problems: RIGID_KINDS,
+    problems: LGVI_KINDS,
     properties: LIE_VARIATIONAL,
     summary: "the table before the colon composing the LGVI (Lee, Leok & McClamroch 2005)",
 };

@@ -14,6 +14,7 @@
 //! | [`lie_gauss`] | variational Lie–Gauss methods: Gauss–Legendre discrete Lagrangian in exponential coordinates, any even order, on rigid and coupled bodies ([`LieGauss`], [`CoupledLieGauss`]) | `lie-gauss4` … `lie-gauss10` |
 //! | [`lie_rk`] | Runge–Kutta–Munthe-Kaas and Crouch–Grossman on `SO(3) × ℝᴺ` and on `SO(3)ᴹ × ℝᴺ` | `rkmk4`, `cg3` |
 //! | [`product`] | [`ProductState`] `(R₁ … R_M, y)`, [`ProductVectorField`] on `SO(3)ᴹ × ℝᴺ` | |
+//! | [`product_lgvi`] | the LGVI on `SO(3)ᴹ × ℝⁿ` for any Lagrangian ([`ProductLagrangian`], [`ProductLgvi`]): trapezoidal discrete Lagrangian in exponential coordinates | `lgvi`, `lgvi4` … `lgvi10` |
 //! | [`splitting`] | principal-axis rotations + kicks (Strang, composed to 4/6/8), kicks + exact free flow (Strang, composed to 4/6/8) | `split2` … `split8`, `split-exact2` … `split-exact8` |
 //! | [`dmv`] | discrete Moser–Veselov | `dmv` |
 //! | [`diagnostics`] | observers: energy, `R m`, `|m|`, `‖RᵀR − 𝟙‖` | |
@@ -29,7 +30,9 @@
 //!   [`CoupledVectorField`] on [`GroupState<Y>`] (`Y = 3 + 2N`) feeds `rkmk4` and `cg3`.
 //! - Any vector field on `SO(3) × ℝᴺ`: implement [`LieVectorField<N>`]; use [`rkmk4`], [`cg3`].
 //! - Several orientations (`SO(3)ᴹ × ℝᴺ`, e.g. bodies joined by ball joints): implement
-//!   [`ProductVectorField<M, N>`]; use [`product_rkmk4`], [`product_cg3`].
+//!   [`ProductVectorField<M, N>`]; use [`product_rkmk4`], [`product_cg3`]. Given the
+//!   Lagrangian's derivatives ([`ProductLagrangian<M, N>`]), [`ProductLgvi`] integrates the same
+//!   state variationally.
 //!
 //! Every symmetric order-2 stepper here composes to higher order with
 //! [`crate::Composition`] (e.g. `Composition::new(&YOSHIDA6, Lgvi::default())`).
@@ -62,6 +65,7 @@ pub mod lie_gauss;
 pub mod lie_rk;
 pub mod problem;
 pub mod product;
+pub mod product_lgvi;
 pub mod splitting;
 pub mod state;
 pub mod taylor;
@@ -85,6 +89,7 @@ pub use lie_rk::{
 };
 pub use problem::{EulerEquations, HeavyTop, LieVectorField, RigidBody};
 pub use product::{ProductState, ProductVectorField};
+pub use product_lgvi::{LagrangianJet, ProductLagrangian, ProductLgvi};
 pub use splitting::{
     ExactSplitting, ExactStepper, PrincipalAxisSplitting, split_exact4, split_exact6, split_exact8,
     split4, split6, split8,

@@ -300,8 +300,13 @@ fn registered_lgvi_compositions_are_the_lgvi_composed_with_their_tables() {
         assert_eq!(p, lgvi.properties, "{name}");
         assert_eq!(
             info.problems,
-            &[ProblemKind::RigidBody, ProblemKind::CoupledRigidBody],
+            &[
+                ProblemKind::RigidBody,
+                ProblemKind::CoupledRigidBody,
+                ProblemKind::ProductLagrangian
+            ],
             "{name}"
         );
+        assert_eq!(info.problems, lgvi.problems, "{name}");
     }
 }

@@ -97,6 +97,9 @@ pub struct ModelScene {
     group: Option<Group>,
     /// Why the Lie-group methods are not offered, when they are not.
     not_on_group: Option<String>,
+    /// The Lagrangian's derivatives on the product `SO(3)ᴹ × ℝʸ`, for a model with several
+    /// orientations on SO(3) ([`on_product::lagrangian_tape`]).
+    product_lagrangian: Option<Tape>,
 }
 
 /// The inputs of a model's tapes at `values` (the parameters in order): time, coordinates and
@@ -119,6 +122,8 @@ impl ModelScene {
     #[must_use]
     pub fn new(mut model: Model) -> Self {
         let group = (model.layout.so3 == 1).then(|| Group::new(&mut model));
+        let product_lagrangian =
+            (model.layout.so3 >= 2).then(|| on_product::lagrangian_tape(&mut model));
         let spatial = spatial_momentum(&mut model);
         let (problems, not_on_group) = group_problems(&model, group.as_ref());
         let layout = model.layout;
@@ -256,6 +261,7 @@ impl ModelScene {
             display,
             group,
             not_on_group,
+            product_lagrangian,
         }
     }
 

@@ -48,9 +48,11 @@ const COUPLED: &[ProblemKind] = &[
 ];
 
 /// … with several orientations on SO(3): a vector field on their product, for the Lie-group
-/// Runge–Kutta methods ([`super::on_product`]).
+/// Runge–Kutta methods, and a Lagrangian on it, for the LGVI and its compositions
+/// ([`super::on_product`]).
 const PRODUCT: &[ProblemKind] = &[
     ProblemKind::ProductVectorField,
+    ProblemKind::ProductLagrangian,
     ProblemKind::Ode,
     ProblemKind::TaylorSeries,
     ProblemKind::DoubleDoubleTaylorSeries,
@@ -92,12 +94,11 @@ fn group_kinds(model: &Model, group: Option<&Group>) -> Result<&'static [Problem
                 .collect();
             format!(
                 "model `{}` has {} orientations on SO(3) ({}), a state on their product \
-                 SO(3)^{} × R^{}, which the Lie-group methods other than rkmk4 and cg3 (the \
-                 LGVI and its compositions, Lie–Gauss, the splittings, dmv, the exact flow) do \
+                 SO(3)^{} × R^{}, which Lie–Gauss, the splittings, dmv and the exact flow do \
                  not integrate: they step on one rotation group (SO(3), or SO(3) × R^n beside \
-                 scalar coordinates); rkmk4 and cg3 run it on the product, and the vector-space \
-                 methods (the explicit pairs, Gauss–Legendre, taylor) each rotation matrix as \
-                 nine numbers",
+                 scalar coordinates); the LGVI and its compositions (lgvi, lgvi4 … lgvi10), \
+                 rkmk4 and cg3 run it on the product, and the vector-space methods (the \
+                 explicit pairs, Gauss–Legendre, taylor) each rotation matrix as nine numbers",
                 model.name,
                 names.len(),
                 names.join(", "),

@@ -376,17 +376,18 @@ fn every_shipped_so3_model_runs_every_lie_group_method_it_lists() {
         K::FreeRigidBody,
         K::LieVectorField,
         K::ProductVectorField,
+        K::ProductLagrangian,
         K::CoupledRigidBody,
     ];
     // lgvi…lgvi10, lie-gauss4…10, rkmk4, cg3, split2…8, split-exact2…8; dmv and exact for the
-    // free body; the coupled lgvi…lgvi10 and lie-gauss4…10 beside a coordinate; rkmk4 and cg3
-    // on the product of several orientations.
+    // free body; the coupled lgvi…lgvi10 and lie-gauss4…10 beside a coordinate; rkmk4, cg3 and
+    // lgvi…lgvi10 on the product of several orientations.
     for (name, expected) in [
         ("heavy-top-so3", 19),
         ("free-hoop-so3", 9),
         ("t-handle-so3", 21),
-        // rkmk4 and cg3 on the product SO(3)² of two orientations.
-        ("double-spherical-pendulum-so3", 2),
+        // rkmk4, cg3 and lgvi…lgvi10 on the product SO(3)² of two orientations.
+        ("double-spherical-pendulum-so3", 7),
     ] {
         let scene = shipped(name);
         let mut ran = 0;

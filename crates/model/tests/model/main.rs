@@ -10,6 +10,7 @@ mod lie;
 mod models;
 mod multi_so3;
 mod multi_so3_lie;
+mod multi_so3_variational;
 mod native;
 mod so3;
 mod support;

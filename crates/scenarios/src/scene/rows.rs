@@ -4,8 +4,8 @@
 
 use nalgebra::SVector;
 use tumble_integrators::rigid::{
-    CoupledLagrangian, CoupledState, FreeRigidBody, ProductState, ProductVectorField, RigidBody,
-    RigidBodyState,
+    CoupledLagrangian, CoupledState, FreeRigidBody, ProductLagrangian, ProductState,
+    ProductVectorField, RigidBody, RigidBodyState,
 };
 use tumble_integrators::{
     DenseStep, Event, Flow, Observer, Ode, SeparableHamiltonian, TaylorSystem,
@@ -361,13 +361,11 @@ where
     observer.summary(&outcome)
 }
 
-/// Runs a vector field on the product `SO(3)ᴹ × ℝᴺ` ([`ProblemKind::ProductVectorField`]) with
-/// the plan's method through [`dispatch::run_product`], from `s0`, turning states into rows as
+/// Runs a system on the product `SO(3)ᴹ × ℝᴺ` (its vector field or its Lagrangian) with the
+/// plan's method through [`dispatch::run_product`], from `s0`, turning states into rows as
 /// [`run_vector`] does.
-///
-/// [`ProblemKind::ProductVectorField`]: tumble_integrators::ProblemKind::ProductVectorField
 pub fn run_product_rows<P, F, const M: usize, const N: usize>(
-    field: &P,
+    system: &P,
     s0: ProductState<M, N>,
     plan: &RunPlan,
     columns: usize,
@@ -376,11 +374,11 @@ pub fn run_product_rows<P, F, const M: usize, const N: usize>(
     recorder: &mut dyn Recorder,
 ) -> Result<RunSummary, SceneError>
 where
-    P: ProductVectorField<M, N>,
+    P: ProductVectorField<M, N> + ProductLagrangian<M, N>,
     F: FnMut(f64, &ProductState<M, N>, &mut [f64]),
 {
     let mut state = s0;
     let mut observer = RowObserver::new(columns, energy_column, plan, row, recorder);
-    let outcome = dispatch::run_product(field, &mut state, plan, &mut observer)?;
+    let outcome = dispatch::run_product(system, &mut state, plan, &mut observer)?;
     observer.summary(&outcome)
 }
