@@ -248,6 +248,8 @@ const LIE_EXPLICIT: Properties = Properties {
 };
 
 pub(super) const RIGID_BODY: &str = "rigid body: inertia J (any symmetric positive definite) and potential V(R) with its moment M(R)";
+/// The LGVI's: [`RIGID_BODY`], or several orientations by their Lagrangian.
+const LGVI_PROBLEM: &str = "rigid body: inertia J (any symmetric positive definite) and potential V(R) with its moment M(R); or a Lagrangian on SO(3)^m × R^n given with its derivatives (several orientations)";
 pub(super) const ODE: &str = "first-order ODE y' = f(t, y)";
 const SEPARABLE: &str = "separable Hamiltonian H = T(p) + V(q)";
 const TAYLOR: &str =
@@ -372,10 +374,10 @@ impl Stepping {
             Stepping::SymplecticEuler | Stepping::StormerVerlet => SEPARABLE,
             Stepping::Strang => "split system given by the flows of its parts",
             Stepping::Composition { base, .. } => base.problem,
-            Stepping::Lgvi
-            | Stepping::LieGauss(_)
-            | Stepping::PrincipalAxisSplitting
-            | Stepping::ExactSplitting => RIGID_BODY,
+            Stepping::Lgvi => LGVI_PROBLEM,
+            Stepping::LieGauss(_) | Stepping::PrincipalAxisSplitting | Stepping::ExactSplitting => {
+                RIGID_BODY
+            }
             Stepping::Rkmk4 | Stepping::Cg3 => LIE_FIELD,
             Stepping::Dmv | Stepping::ExactFlow => FREE_BODY,
             Stepping::Taylor(_) => TAYLOR,
@@ -419,7 +421,7 @@ pub const VERLET_BASE: Base = Base {
 pub const LGVI_BASE: Base = Base {
     name: "lgvi",
     stepper: BaseStepper::Lgvi,
-    problem: RIGID_BODY,
+    problem: LGVI_PROBLEM,
     problems: LGVI_KINDS,
     properties: LIE_VARIATIONAL,
     summary: "the table before the colon composing the LGVI (Lee, Leok & McClamroch 2005)",

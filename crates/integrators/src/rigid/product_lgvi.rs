@@ -19,8 +19,8 @@
 //!
 //! (Marsden & West, *Discrete mechanics and variational integrators*, Acta Numerica 10 (2001)
 //! 357–514, §2.7 for the trapezoidal rule; on a Lie group in exponential coordinates,
-//! Bou-Rabee & Marsden, *Hamilton–Pontryagin integrators on Lie groups*, Found. Comput. Math. 9
-//! (2009) 197–219). With `p = ∂L/∂v`, `F` the left-trivialized derivative of `L` along the
+//! Bou-Rabee & Marsden, *Hamilton–Pontryagin integrators on Lie groups, Part I*, Found.
+//! Comput. Math. 9 (2009) 197–219). With `p = ∂L/∂v`, `F` the left-trivialized derivative of `L` along the
 //! configuration at fixed velocities (`∂L/∂qᵢ`, and `d/dε L(Rₖ exp(ε ê_a))|₀` along each
 //! rotation), `P = ½ [p(t₀, g₀, ξ) + p(t₁, g₁, ξ)]`, and on each rotation block the inverse
 //! right Jacobian `J_r⁻¹` of SO(3) ([`tumble_kinematics::so3::dexpinv`]; the identity on ℝⁿ),
@@ -35,8 +35,9 @@
 //! Newton's method, with `μ₀` the momenta at the step's start, and the second gives `μ₁`.
 //!
 //! **Properties.** The map is symplectic (it is a variational integrator) and symmetric:
-//! `L_d` is its own adjoint, so its order is 2 (Marsden & West, Theorem 2.3.1), and it is a
-//! base of the symmetric compositions (`lgvi4` … `lgvi10`). Where `L` is invariant under
+//! `L_d(g₀, g₁; h) = −L_d(g₁, g₀; −h)` (with `t₀` and `t₁` exchanged), so its order is even;
+//! it is 2, the order to which `L_d` approximates the exact action (Marsden & West,
+//! Theorem 2.3.1), and the map is a base of the symmetric compositions (`lgvi4` … `lgvi10`). Where `L` is invariant under
 //! turning every rotation by the same `Q` (`Rₖ → Q Rₖ`), `L_d` is too, and the spatial
 //! momentum `Σₖ Rₖ μₖ` is conserved exactly (discrete Noether theorem, Marsden & West §1.3.3):
 //! for a free body, `R₁ μ₁ = R₀ exp(hξ̂) J_r⁻¹(−hξ) P = R₀ J_r⁻¹(hξ) P = R₀ μ₀`. Every rotation
@@ -57,7 +58,9 @@
 //! `J_r⁻¹(hξ) · ½ [M₀ + M₁ + h K₁ E] − (h/2) diag(P̂ₖ) − (h/2) K₀ᵀ`, with `M = ∂²L/∂v²`,
 //! `K = ∂p/∂η` (the momenta's left-trivialized configuration derivative, [`LagrangianJet::mixed`])
 //! and `E = diag(𝟙, J_r(hξₖ))` (`∂g₁ = g₁ exp(h E ∂ξ)`); only the second-order terms of `J_r⁻¹`'s
-//! own derivative are left out, so the iteration converges fast, and it runs to round-off.
+//! own derivative are left out, so the iteration converges fast ([`ProductLgvi::iterations`]).
+//! It runs until the increment is below `4ε` of each velocity block (the rates, each angular
+//! velocity) or stops shrinking once below `1e-10` of it (round-off).
 
 use faer::Mat;
 use faer::dyn_stack::{MemBuffer, MemStack};
@@ -155,6 +158,10 @@ pub struct ProductLgvi<const M: usize, const N: usize> {
     xi: Vec<f64>,
     /// `P = ½ (p₀ + p₁)`.
     average: Vec<f64>,
+    /// Each velocity block's floor in the convergence test ([`Self::increment_size`]).
+    floors: Vec<f64>,
+    /// Newton iterations of the last step (its velocities' solve not counted).
+    iterations: usize,
     matrix: Mat<f64>,
     rhs: Mat<f64>,
     perm: Vec<usize>,
@@ -204,6 +211,8 @@ impl<const M: usize, const N: usize> ProductLgvi<M, N> {
             mu: vec![0.0; d],
             xi: vec![0.0; d],
             average: vec![0.0; d],
+            floors: vec![0.0; M + 1],
+            iterations: 0,
             matrix: Mat::zeros(d, d),
             rhs: Mat::zeros(d, 1),
             perm: vec![0; d],
@@ -218,6 +227,13 @@ impl<const M: usize, const N: usize> ProductLgvi<M, N> {
     pub fn with_max_iterations(mut self, n: usize) -> Self {
         self.max_iterations = n;
         self
+    }
+
+    /// The Newton iterations the last step took to solve for `ξ` (a diagnostic: about three
+    /// where Newton's matrix is right, many more where it is not).
+    #[must_use]
+    pub fn iterations(&self) -> usize {
+        self.iterations
     }
 
     /// The end point `g₁ = g₀ exp(hξ)` with the velocities `ξ`: `(R₁, (q₁, ξ))`.
@@ -242,7 +258,8 @@ impl<const M: usize, const N: usize> ProductLgvi<M, N> {
         Vector3::from_column_slice(&self.xi[Self::COORDINATES + 3 * k..][..3])
     }
 
-    /// Evaluates the jets at `(t₀, g₀, ξ)` and `(t₁, g₁, ξ)`, and `P`.
+    /// Evaluates the jets at `(t₀, g₀, ξ)` and `(t₁, g₁, ξ)`, and `P`; `None` when a jet is
+    /// not finite.
     fn evaluate<L: ProductLagrangian<M, N> + ?Sized>(
         &mut self,
         problem: &L,
@@ -250,7 +267,7 @@ impl<const M: usize, const N: usize> ProductLgvi<M, N> {
         r0: &[Matrix3<f64>; M],
         y0: &SVector<f64, N>,
         h: f64,
-    ) -> ([Matrix3<f64>; M], SVector<f64, N>) {
+    ) -> Option<([Matrix3<f64>; M], SVector<f64, N>)> {
         let n = Self::COORDINATES;
         let mut at0 = *y0;
         at0.as_mut_slice()[n..].copy_from_slice(&self.xi);
@@ -264,7 +281,7 @@ impl<const M: usize, const N: usize> ProductLgvi<M, N> {
         {
             *p = 0.5 * (a + b);
         }
-        (r1, y1)
+        (self.start.is_finite() && self.end.is_finite()).then_some((r1, y1))
     }
 
     /// `−(J_r⁻¹(hξ) P − (h/2) F₀ − μ₀)` into the right-hand side.
@@ -350,9 +367,9 @@ impl<const M: usize, const N: usize> ProductLgvi<M, N> {
         })
     }
 
-    /// Solves with the factored matrix; the solution replaces the right-hand side. Returns
-    /// its largest entry relative to `scale` (of at least the smallest normal number).
-    fn solve(&mut self, scale: f64) -> f64 {
+    /// Solves with the factored matrix; the solution (an increment of the velocities)
+    /// replaces the right-hand side.
+    fn solve(&mut self) {
         let d = Self::VELOCITIES;
         let perm = PermRef::new_checked(&self.perm, &self.perm_inv, d);
         let stack = MemStack::new(&mut self.buf);
@@ -364,11 +381,53 @@ impl<const M: usize, const N: usize> ProductLgvi<M, N> {
             Par::Seq,
             stack,
         );
-        (0..d).fold(0.0f64, |m, i| m.max(self.rhs[(i, 0)].abs())) / scale.max(f64::MIN_POSITIVE)
     }
 
-    fn largest(v: &[f64]) -> f64 {
-        v.iter().fold(0.0f64, |m, x| m.max(x.abs()))
+    /// The largest `|x|` over `xs`, NaN when one is NaN.
+    fn largest(xs: impl Iterator<Item = f64>) -> f64 {
+        xs.fold(0.0f64, |m, x| {
+            if x.abs() > m || x.is_nan() {
+                x.abs()
+            } else {
+                m
+            }
+        })
+    }
+
+    /// The velocities' blocks: the rates (`0..n`) and each rotation's angular velocity.
+    fn block(b: usize) -> std::ops::Range<usize> {
+        let n = Self::COORDINATES;
+        if b == 0 {
+            0..n
+        } else {
+            n + 3 * (b - 1)..n + 3 * b
+        }
+    }
+
+    /// The increment in the right-hand side relative to the velocities `v`, block by block
+    /// ([`Self::block`]): each block against the larger of its own size and its floor, so that
+    /// a slow block is solved to its own round-off, not to the fastest block's. The floors are
+    /// set from the first increment of an iteration (`set_floors`), so that a block at rest
+    /// (a body released from rest) is measured against the size of its first change. NaN when
+    /// an entry is NaN.
+    fn increment_size(&mut self, v: &[f64], set_floors: bool) -> f64 {
+        let mut size = 0.0f64;
+        for b in 0..=M {
+            let range = Self::block(b);
+            if range.is_empty() {
+                continue;
+            }
+            let delta = Self::largest(range.clone().map(|i| self.rhs[(i, 0)]));
+            let own = Self::largest(v[range].iter().copied());
+            if set_floors {
+                self.floors[b] = own.max(delta).max(f64::MIN_POSITIVE);
+            }
+            let relative = delta / own.max(self.floors[b]);
+            if relative > size || relative.is_nan() {
+                size = relative;
+            }
+        }
+        size
     }
 }
 
@@ -403,13 +462,14 @@ impl<const M: usize, const N: usize, L: ProductLagrangian<M, N> + ?Sized> Steppe
         let r0 = state.rotations;
         let y0 = state.vector;
         // μ₀: the momenta at the step's start. The first guess of ξ is the velocity there.
+        let non_finite = || Error::NonFinite {
+            t,
+            h,
+            state: state.to_vec(),
+        };
         problem.jet(t, &r0, &y0, &mut self.start);
         if !self.start.is_finite() {
-            return Err(Error::NonFinite {
-                t,
-                h,
-                state: state.to_vec(),
-            });
+            return Err(non_finite());
         }
         self.mu.copy_from_slice(&self.start.momenta);
         self.xi.copy_from_slice(&y0.as_slice()[n..]);
@@ -418,12 +478,16 @@ impl<const M: usize, const N: usize, L: ProductLagrangian<M, N> + ?Sized> Steppe
         let mut iterations = 0;
         while iterations < self.max_iterations {
             iterations += 1;
-            self.evaluate(problem, t, &r0, &y0, h);
+            self.evaluate(problem, t, &r0, &y0, h)
+                .ok_or_else(non_finite)?;
             self.residual(h);
             if !self.factor_jacobian(h) {
                 return Err(singular());
             }
-            let size = self.solve(Self::largest(&self.xi));
+            self.solve();
+            let xi = std::mem::take(&mut self.xi);
+            let size = self.increment_size(&xi, iterations == 1);
+            self.xi = xi;
             if !size.is_finite() {
                 return Err(failure(iterations, size));
             }
@@ -441,11 +505,14 @@ impl<const M: usize, const N: usize, L: ProductLagrangian<M, N> + ?Sized> Steppe
                 break;
             }
         }
+        self.iterations = iterations;
         if !converged {
             return Err(failure(iterations, previous));
         }
         // μ₁ at the solution.
-        let (r1, mut y1) = self.evaluate(problem, t, &r0, &y0, h);
+        let (r1, mut y1) = self
+            .evaluate(problem, t, &r0, &y0, h)
+            .ok_or_else(non_finite)?;
         for i in 0..n {
             self.mu[i] = self.average[i] + 0.5 * h * self.end.force[i];
         }
@@ -460,14 +527,9 @@ impl<const M: usize, const N: usize, L: ProductLagrangian<M, N> + ?Sized> Steppe
         // The velocities at g₁: p(t₁, g₁, v₁) = μ₁, from v = ξ (where `end` was evaluated).
         let mut previous = f64::INFINITY;
         let mut converged = false;
-        for _ in 0..self.max_iterations {
-            if !self.end.is_finite() {
-                return Err(Error::NonFinite {
-                    t,
-                    h,
-                    state: state.to_vec(),
-                });
-            }
+        let mut solves = 0;
+        while solves < self.max_iterations {
+            solves += 1;
             for r in 0..d {
                 self.rhs[(r, 0)] = self.mu[r] - self.end.momenta[r];
                 for c in 0..d {
@@ -477,9 +539,10 @@ impl<const M: usize, const N: usize, L: ProductLagrangian<M, N> + ?Sized> Steppe
             if !self.factor(d) {
                 return Err(singular());
             }
-            let size = self.solve(Self::largest(&y1.as_slice()[n..]));
+            self.solve();
+            let size = self.increment_size(&y1.as_slice()[n..], solves == 1);
             if !size.is_finite() {
-                return Err(failure(self.max_iterations, size));
+                return Err(failure(solves, size));
             }
             if size >= previous {
                 converged = previous <= 1e-10;
@@ -494,9 +557,12 @@ impl<const M: usize, const N: usize, L: ProductLagrangian<M, N> + ?Sized> Steppe
                 break;
             }
             problem.jet(t + h, &r1, &y1, &mut self.end);
+            if !self.end.is_finite() {
+                return Err(non_finite());
+            }
         }
         if !converged {
-            return Err(failure(self.max_iterations, previous));
+            return Err(failure(solves, previous));
         }
         state.rotations = r1;
         state.vector = y1;
