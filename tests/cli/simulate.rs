@@ -828,3 +828,108 @@ fn simulate_states_an_error_estimate_within_10x_of_the_error_against_the_referen
     assert_eq!(record["error_estimate"]["status"], "off");
     assert!(err.contains("not estimated (--check off)"), "{err}");
 }
+
+/// `--precision double-double` runs the Taylor method in double-double (`taylor-dd`): the
+/// same rows as `--integrator taylor-dd`, with `--integrator taylor` or none, and on the free
+/// body within 1e-14 of the exact flow (the exact flow here in double). A method that runs in
+/// double, `taylor-dd` under `--precision double`, and an unknown precision are refused before
+/// any work, with what to give instead.
+#[test]
+fn precision_double_double_runs_the_taylor_method_in_double_double() {
+    let dir = TempDir::new().unwrap();
+    let common = [
+        "simulate",
+        "free-body",
+        "--tol",
+        "1e-30",
+        "--t-end",
+        "2",
+        "--check",
+        "off",
+    ];
+    let mut csvs = Vec::new();
+    for (i, extra) in [
+        &["--precision", "double-double"][..],
+        &["--precision", "double-double", "--integrator", "taylor"],
+        &["--integrator", "taylor-dd"],
+    ]
+    .iter()
+    .enumerate()
+    {
+        let file = format!("run{i}.csv");
+        let mut args: Vec<&str> = common.to_vec();
+        args.extend_from_slice(extra);
+        args.extend_from_slice(&["-o", &file]);
+        succeeds(dir.path(), &args);
+        csvs.push(read_csv(&dir.path().join(&file)));
+    }
+    assert_eq!(csvs[0], csvs[2]);
+    assert_eq!(csvs[1], csvs[2]);
+    let (columns, rows) = &csvs[0];
+    let scene = find("free-body").unwrap();
+    let mut exact = Rows::default();
+    scene
+        .run(
+            &scene.info().default_params(),
+            &RunOptions {
+                integrator: Some("exact".into()),
+                step: Some(StepControl::Fixed(2.0)),
+                t_end: Some(2.0),
+                ..RunOptions::default()
+            },
+            &mut exact,
+        )
+        .unwrap();
+    assert_eq!(columns, &scene.info().columns());
+    let (last, reference) = (rows.last().unwrap(), exact.0.last().unwrap());
+    assert_eq!(last[0], 2.0);
+    let worst = last
+        .iter()
+        .zip(reference)
+        .zip(columns)
+        .filter(|(_, name)| name.as_str() != "energy_rel_err")
+        .map(|((a, b), _)| (a - b).abs())
+        .fold(0.0, f64::max);
+    assert!(worst < 1e-14, "{worst:e}");
+    fails(
+        &[],
+        &[
+            "simulate",
+            "free-body",
+            "--precision",
+            "double-double",
+            "--integrator",
+            "vern9",
+        ],
+        &[
+            "--integrator vern9",
+            "runs in double",
+            "give --integrator taylor",
+        ],
+    );
+    fails(
+        &[],
+        &[
+            "simulate",
+            "free-body",
+            "--precision",
+            "double",
+            "--integrator",
+            "taylor-dd",
+        ],
+        &[
+            "`taylor-dd` runs in double-double",
+            "--precision double-double",
+        ],
+    );
+    let out = tumble_in(
+        dir.path(),
+        &["simulate", "free-body", "--precision", "quad"],
+    );
+    assert!(!out.status.success());
+    assert!(
+        stderr(&out).contains("`quad` is not a precision: give double or double-double"),
+        "{}",
+        stderr(&out)
+    );
+}

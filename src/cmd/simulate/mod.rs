@@ -47,6 +47,11 @@ pub struct Args {
     /// Integrator (from `tumble integrators`) among those the scene lists as applicable.
     #[arg(long, value_name = "NAME")]
     pub integrator: Option<String>,
+    /// Arithmetic of the run: `double`, or `double-double` (about 32 digits), in which the
+    /// Taylor method runs (`taylor-dd`: give `--integrator taylor` or none, and a tolerance
+    /// such as `--tol 1e-30`).
+    #[arg(long, value_name = "double|double-double", value_parser = parse_precision)]
+    pub precision: Option<Precision>,
     /// Fixed step in seconds (fixed-step integrators).
     #[arg(
         long,
@@ -192,7 +197,7 @@ fn setup(args: &Args) -> Result<Setup> {
     let loaded = load_scene(&args.target)?;
     let at = args.at.as_deref().map(parse_times).transpose()?;
     let request = RunRequest {
-        integrator: args.integrator.clone(),
+        integrator: integrator_at(args.integrator.as_deref(), args.precision)?,
         // clap refuses --dt with --tol.
         step: StepControl::from_dt_tol(args.dt, args.tol)?,
         t_end: args.t_end,
@@ -295,6 +300,44 @@ fn parse_check(raw: &str) -> Result<bool> {
         "on" => Ok(true),
         "off" => Ok(false),
         _ => bail!("`{raw}` is not a check setting: give on or off"),
+    }
+}
+
+/// The arithmetic a run asks for (`--precision`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Precision {
+    /// IEEE double.
+    Double,
+    /// Double-double (an unevaluated sum of two doubles, about 32 digits).
+    DoubleDouble,
+}
+
+/// Parses `--precision`.
+fn parse_precision(raw: &str) -> Result<Precision> {
+    match raw {
+        "double" => Ok(Precision::Double),
+        "double-double" => Ok(Precision::DoubleDouble),
+        _ => bail!("`{raw}` is not a precision: give double or double-double"),
+    }
+}
+
+/// The integrator `--integrator` names in the arithmetic `--precision` asks for: in
+/// double-double the Taylor method (`taylor-dd`), the only method that runs in it.
+fn integrator_at(integrator: Option<&str>, precision: Option<Precision>) -> Result<Option<String>> {
+    const DD: &str = "taylor-dd";
+    match (precision, integrator) {
+        (None, name) => Ok(name.map(str::to_string)),
+        (Some(Precision::DoubleDouble), None | Some("taylor" | DD)) => Ok(Some(DD.into())),
+        (Some(Precision::DoubleDouble), Some(name)) => bail!(
+            "--precision double-double --integrator {name}: `{name}` runs in double; the \
+             method that runs in double-double is the Taylor method ({DD}): give --integrator \
+             taylor, or leave --integrator out"
+        ),
+        (Some(Precision::Double), Some(DD)) => bail!(
+            "--precision double --integrator {DD}: `{DD}` runs in double-double; give \
+             --integrator taylor for the Taylor method in double, or --precision double-double"
+        ),
+        (Some(Precision::Double), name) => Ok(name.map(str::to_string)),
     }
 }
 
