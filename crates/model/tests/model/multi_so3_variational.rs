@@ -77,6 +77,37 @@ fn observed_orders(errors: &[f64]) -> Vec<f64> {
     errors.windows(2).map(|e| (e[0] / e[1]).log2()).collect()
 }
 
+/// Runs `method` on `scene`'s Lagrangian to `t_end` at each of `steps` (each twice the last),
+/// prints the errors against `exact` and the observed orders, and checks each order is
+/// `order` ± 0.3.
+fn assert_orders<const Z: usize, const N: usize>(
+    scene: &ModelScene,
+    exact: &SVector<f64, Z>,
+    t_end: f64,
+    (method, order, steps): (&str, f64, &[u32]),
+    what: &str,
+) {
+    let errors: Vec<f64> = steps
+        .iter()
+        .map(|&n| {
+            let end = lagrangian_run::<2, Z, N>(scene, method, t_end / f64::from(n), n);
+            (end - exact).amax()
+        })
+        .collect();
+    let observed = observed_orders(&errors);
+    let shown: Vec<String> = errors.iter().map(|e| format!("{e:.3e}")).collect();
+    println!(
+        "{method} on {what}: errors {shown:?} at {steps:?} steps to t = {t_end}, orders \
+         {observed:.3?}"
+    );
+    for p in observed {
+        assert!(
+            (p - order).abs() <= 0.3,
+            "{method} on {what}: observed order {p}"
+        );
+    }
+}
+
 /// `lgvi`, `lgvi4` and `lgvi6` on the double spherical pendulum (SO(3)², the lower body's pivot
 /// carried by the upper one, so the kinetic energy depends on the relative rotation), fixed
 /// steps to t = 1 against vern9 at 1e-15: halving the step divides the error by `2ᵖ`, `p` the
@@ -91,22 +122,7 @@ fn lgvi_and_its_compositions_on_two_orientations_converge_at_their_orders() {
         ("lgvi4", 4.0, [25, 50, 100, 200]),
         ("lgvi6", 6.0, [20, 40, 80, 160]),
     ] {
-        let errors: Vec<f64> = steps
-            .iter()
-            .map(|&n| {
-                let end = lagrangian_run::<2, S, Y>(scene, method, t_end / f64::from(n), n);
-                (end - exact).amax()
-            })
-            .collect();
-        let observed = observed_orders(&errors);
-        let shown: Vec<String> = errors.iter().map(|e| format!("{e:.3e}")).collect();
-        println!(
-            "{method} on {MODEL}: errors {shown:?} at {steps:?} steps to t = {t_end}, orders \
-             {observed:.3?}"
-        );
-        for p in observed {
-            assert!((p - order).abs() <= 0.3, "{method}: observed order {p}");
-        }
+        assert_orders::<S, Y>(scene, &exact, t_end, (method, order, &steps), MODEL);
     }
 }
 
@@ -209,19 +225,13 @@ fn lgvi_with_scalar_coordinates_beside_two_orientations_converges_at_its_order()
         ("lgvi", 2.0, [100, 200, 400]),
         ("lgvi4", 4.0, [50, 100, 200]),
     ] {
-        let errors: Vec<f64> = steps
-            .iter()
-            .map(|&n| {
-                let end = lagrangian_run::<2, Z, W>(model, method, t_end / f64::from(n), n);
-                (end - exact).amax()
-            })
-            .collect();
-        let observed = observed_orders(&errors);
-        let shown: Vec<String> = errors.iter().map(|e| format!("{e:.3e}")).collect();
-        println!("{method} on two hoops with beads: errors {shown:?}, orders {observed:.3?}");
-        for p in observed {
-            assert!((p - order).abs() <= 0.3, "{method}: observed order {p}");
-        }
+        assert_orders::<Z, W>(
+            model,
+            &exact,
+            t_end,
+            (method, order, &steps),
+            "two hoops with beads",
+        );
     }
 }
 
@@ -316,22 +326,7 @@ fn lgvi_on_two_orientations_converges_in_a_rotating_frame_and_under_a_driven_piv
         );
         for (method, order, steps) in [("lgvi", 2.0, [50, 100, 200]), ("lgvi4", 4.0, [25, 50, 100])]
         {
-            let errors: Vec<f64> = steps
-                .iter()
-                .map(|&n| {
-                    let end = lagrangian_run::<2, S, Y>(scene, method, t_end / f64::from(n), n);
-                    (end - exact).amax()
-                })
-                .collect();
-            let observed = observed_orders(&errors);
-            let shown: Vec<String> = errors.iter().map(|e| format!("{e:.3e}")).collect();
-            println!("{method}, {what}: errors {shown:?}, orders {observed:.3?}");
-            for p in observed {
-                assert!(
-                    (p - order).abs() <= 0.3,
-                    "{method}, {what}: observed order {p}"
-                );
-            }
+            assert_orders::<S, Y>(scene, &exact, t_end, (method, order, &steps), what);
         }
     }
 }
