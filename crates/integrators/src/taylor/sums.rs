@@ -201,6 +201,76 @@ impl<S: SeriesScalar, const M: usize> CrossSums<S, M> {
     }
 }
 
+impl<S: SeriesScalar, const M: usize> CrossSums<S, M> {
+    /// [`CrossSums::set_left`] of the `R` lanes from `at` only: several stages of a recursion
+    /// share one `CrossSums`, so that their [`CrossSums::middle`] is one element-wise pass over
+    /// the widest vectors, and each stage sets its own lanes as its factors become known.
+    ///
+    /// # Panics
+    /// If `j` is beyond the order [`CrossSums::reserve`] made room for, or `at + R > M`.
+    #[inline(always)]
+    pub fn set_left_lanes<const R: usize>(
+        &mut self,
+        j: usize,
+        at: usize,
+        first: [S; R],
+        second: [S; R],
+    ) {
+        self.first[j][at..at + R].copy_from_slice(&first);
+        self.second[j][at..at + R].copy_from_slice(&second);
+    }
+
+    /// [`CrossSums::set_right`] of the `R` lanes from `at` only ([`CrossSums::set_left_lanes`]).
+    ///
+    /// # Panics
+    /// If `j` is beyond the order [`CrossSums::reserve`] made room for, or `at + R > M`.
+    #[inline(always)]
+    pub fn set_right_lanes<const R: usize>(
+        &mut self,
+        j: usize,
+        at: usize,
+        w_first: [S; R],
+        w_second: [S; R],
+    ) {
+        self.w_first[j][at..at + R].copy_from_slice(&w_first);
+        self.w_second[j][at..at + R].copy_from_slice(&w_second);
+    }
+
+    /// [`CrossSums::finish_with`] of the `R` lanes from `at` only, from the middle of all `M`
+    /// ([`CrossSums::set_left_lanes`]): the same operations, lane by lane, as
+    /// [`CrossSums::finish_with`] on those lanes.
+    ///
+    /// # Panics
+    /// If order 0 has not been set (for `k > 0`), `from > 1`, or `at + R > M`.
+    #[inline(always)]
+    #[must_use]
+    pub fn finish_lanes<const R: usize>(
+        &self,
+        k: usize,
+        from: usize,
+        at: usize,
+        middle: &[S; M],
+        [first, second, w_first, w_second]: [&[S; R]; 4],
+    ) -> [S; R] {
+        assert!(from <= 1, "a Cauchy sum starts at j = 0 or 1, not {from}");
+        let lanes = |v: &[S; M]| -> [S; R] { std::array::from_fn(|i| v[at + i]) };
+        let mut sums = lanes(middle);
+        if k == 0 {
+            if from == 0 {
+                add_term(&mut sums, first, second, w_first, w_second);
+            }
+        } else {
+            let (w1, w2) = (lanes(&self.w_first[0]), lanes(&self.w_second[0]));
+            add_term(&mut sums, first, second, &w1, &w2);
+            if from == 0 {
+                let (u1, u2) = (lanes(&self.first[0]), lanes(&self.second[0]));
+                add_term(&mut sums, &u1, &u2, w_first, w_second);
+            }
+        }
+        sums
+    }
+}
+
 /// `sums += u1 ⊙ w1 − u2 ⊙ w2`, lane by lane.
 #[inline(always)]
 fn add_term<S: SeriesScalar, const M: usize>(
@@ -304,5 +374,86 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// Lanes set and finished in groups ([`CrossSums::set_left_lanes`],
+    /// [`CrossSums::finish_lanes`]) give, bit for bit, what the whole arrays give: six lanes in
+    /// groups of 3, 2 and 1, over orders 0 … 9, for sums from `j = 0` and from `j = 1`.
+    #[test]
+    fn lanes_set_and_finished_in_groups_are_the_whole_sums_bit_for_bit() {
+        let order = 9;
+        let f = |j: usize, lane: usize, which: usize| {
+            ((j * 7 + lane * 3 + which * 5) as f64 * 0.37).sin() / (1.0 + j as f64)
+        };
+        let row = |j: usize, which: usize| -> [f64; 6] { std::array::from_fn(|l| f(j, l, which)) };
+        let mut whole = CrossSums::<f64, 6>::default();
+        let mut grouped = CrossSums::<f64, 6>::default();
+        whole.reserve(order);
+        grouped.reserve(order);
+        for j in 0..=order {
+            whole.set(j, row(j, 0), row(j, 1), row(j, 2), row(j, 3));
+            set_group::<3>(&mut grouped, j, 0, &row);
+            set_group::<2>(&mut grouped, j, 3, &row);
+            set_group::<1>(&mut grouped, j, 5, &row);
+        }
+        for k in 0..=order {
+            for from in 0..=1 {
+                let expected = whole.sum(from, k);
+                let middle = grouped.middle(k);
+                let first: [f64; 3] = grouped.finish_lanes(
+                    k,
+                    from,
+                    0,
+                    &middle,
+                    [
+                        &row(k, 0)[..3].try_into().unwrap(),
+                        &row(k, 1)[..3].try_into().unwrap(),
+                        &row(k, 2)[..3].try_into().unwrap(),
+                        &row(k, 3)[..3].try_into().unwrap(),
+                    ],
+                );
+                let second: [f64; 2] = grouped.finish_lanes(
+                    k,
+                    from,
+                    3,
+                    &middle,
+                    [
+                        &row(k, 0)[3..5].try_into().unwrap(),
+                        &row(k, 1)[3..5].try_into().unwrap(),
+                        &row(k, 2)[3..5].try_into().unwrap(),
+                        &row(k, 3)[3..5].try_into().unwrap(),
+                    ],
+                );
+                let third: [f64; 1] = grouped.finish_lanes(
+                    k,
+                    from,
+                    5,
+                    &middle,
+                    [&[f(k, 5, 0)], &[f(k, 5, 1)], &[f(k, 5, 2)], &[f(k, 5, 3)]],
+                );
+                let got = [first[0], first[1], first[2], second[0], second[1], third[0]];
+                for lane in 0..6 {
+                    assert_eq!(
+                        got[lane].to_bits(),
+                        expected[lane].to_bits(),
+                        "k = {k}, from = {from}, lane {lane}: {} vs {}",
+                        got[lane],
+                        expected[lane]
+                    );
+                }
+            }
+        }
+    }
+
+    /// Sets lanes `at .. at + R` of order `j` from `row(j, which)`.
+    fn set_group<const R: usize>(
+        sums: &mut CrossSums<f64, 6>,
+        j: usize,
+        at: usize,
+        row: &impl Fn(usize, usize) -> [f64; 6],
+    ) {
+        let part = |which: usize| -> [f64; R] { std::array::from_fn(|i| row(j, which)[at + i]) };
+        sums.set_left_lanes(j, at, part(0), part(1));
+        sums.set_right_lanes(j, at, part(2), part(3));
     }
 }

@@ -93,25 +93,29 @@ const G: usize = 14;
 /// `S D/2 − C W`.
 const SD_CW: usize = 15;
 
+/// The lanes of the full model's first three stages ([`FullWork::head`]): the sine–cosine
+/// sums (4 lanes), then `ω_x, ω_y`'s (2), then `D, W` (2).
+const TRIG: usize = 0;
+const OMEGA: usize = 4;
+const DW: usize = 6;
+
 /// The full model's workspace: the factors of each stage's Cauchy sums, by order.
 #[derive(Debug, Clone, Default)]
 struct FullWork {
-    /// `k sₖ`, `k cₖ` of `sin α, cos α` and `(k/2)` of `sin 2α, cos 2α`: `j αⱼ` against
-    /// `(cos α, sin α, cos 2α, sin 2α)ₖ₋ⱼ`.
-    trig: CrossSums<f64, 4>,
-    /// `Σ C Π_x + S Π_y` and `Σ S Π_x − C Π_y` (the sums in `ω_x, ω_y`).
-    omega: CrossSums<f64, 2>,
-    /// `D = ω_x² − ω_y²`, `W = ω_x ω_y`.
-    dw: CrossSums<f64, 2>,
+    /// The first three stages side by side, so that their sums over the lower orders are one
+    /// pass over eight lanes:
+    /// - from [`TRIG`]: `k sₖ`, `k cₖ` of `sin α, cos α` and `(k/2)` of `sin 2α, cos 2α`: `j αⱼ`
+    ///   against `(cos α, sin α, cos 2α, sin 2α)ₖ₋ⱼ`;
+    /// - from [`OMEGA`]: `Σ C Π_x + S Π_y` and `Σ S Π_x − C Π_y` (the sums in `ω_x, ω_y`);
+    /// - from [`DW`]: `D = ω_x² − ω_y²`, `W = ω_x ω_y`.
+    head: CrossSums<f64, 8>,
     /// `Ṙ`, `Π × ω` and the sums of the gravity terms and of `ṗ_α` (lanes above).
     main: CrossSums<f64, 16>,
 }
 
 impl FullWork {
     fn reserve(&mut self, order: usize) {
-        self.trig.reserve(order);
-        self.omega.reserve(order);
-        self.dw.reserve(order);
+        self.head.reserve(order);
         self.main.reserve(order);
     }
 }
@@ -299,29 +303,35 @@ fn full(
         // The terms of every stage whose factors are all of lower orders first: four
         // independent passes. Each stage's end terms (`j = 0` and `j = k`, which hold its
         // order-k factors) then follow from the factors as computed, not read back.
-        let middle_trig = work.trig.middle(k);
-        let middle_omega = work.omega.middle(k);
-        let middle_dw = work.dw.middle(k);
+        let middle_head = work.head.middle(k);
         let middle_main = work.main.middle(k);
         if k > 0 {
             // k sₖ = Σⱼ₌₁ᵏ j αⱼ cₖ₋ⱼ, k cₖ = −Σⱼ₌₁ᵏ j αⱼ sₖ₋ⱼ; twice that for 2α.
             let u = [k as f64 * x[FULL_ALPHA]; 4];
-            let t = work
-                .trig
-                .finish_with(k, 1, middle_trig, [&u, &[0.0; 4], &[0.0; 4], &[0.0; 4]]);
-            work.trig.set_left(k, u, [0.0; 4]);
+            let t = work.head.finish_lanes(
+                k,
+                1,
+                TRIG,
+                &middle_head,
+                [&u, &[0.0; 4], &[0.0; 4], &[0.0; 4]],
+            );
+            work.head.set_left_lanes(k, TRIG, u, [0.0; 4]);
             let inv = 1.0 / k as f64;
             trig = [t[0] * inv, -t[1] * inv, 2.0 * t[2] * inv, -2.0 * t[3] * inv];
         }
         let [sin, cos, sin2, cos2] = trig;
-        work.trig.set_right(k, [cos, sin, cos2, sin2], [0.0; 4]);
+        work.head
+            .set_right_lanes(k, TRIG, [cos, sin, cos2, sin2], [0.0; 4]);
         // ωₖ, linear in Π with coefficients affine in sin 2α, cos 2α.
         let (px, py, pz) = (x[FULL_PI], x[FULL_PI + 1], x[FULL_PI + 2]);
         let omega_factors = [[cos2, sin2], [sin2, cos2], [px, px], [-py, py]];
         let [f1, f2, f3, f4] = &omega_factors;
-        let o = work.omega.finish_with(k, 0, middle_omega, [f1, f2, f3, f4]);
+        let o = work
+            .head
+            .finish_lanes(k, 0, OMEGA, &middle_head, [f1, f2, f3, f4]);
         let [f1, f2, f3, f4] = omega_factors;
-        work.omega.set(k, f1, f2, f3, f4);
+        work.head.set_left_lanes(k, OMEGA, f1, f2);
+        work.head.set_right_lanes(k, OMEGA, f3, f4);
         let omega = [
             a0 * px + a1 * o[0],
             a0 * py + a1 * o[1],
@@ -330,9 +340,12 @@ fn full(
         let [wx, wy, wz] = omega;
         let dw_factors = [[wx, wx], [wy, 0.0], [wx, wy], [wy, 0.0]];
         let [f1, f2, f3, f4] = &dw_factors;
-        let [dk, wk] = work.dw.finish_with(k, 0, middle_dw, [f1, f2, f3, f4]);
+        let [dk, wk] = work
+            .head
+            .finish_lanes(k, 0, DW, &middle_head, [f1, f2, f3, f4]);
         let [f1, f2, f3, f4] = dw_factors;
-        work.dw.set(k, f1, f2, f3, f4);
+        work.head.set_left_lanes(k, DW, f1, f2);
+        work.head.set_right_lanes(k, DW, f3, f4);
         // Γ = (x₂, x₅, x₈), the third row of R.
         let (gx, gy, gz) = (x[2], x[5], x[8]);
         let mut first = [0.0; 16];
