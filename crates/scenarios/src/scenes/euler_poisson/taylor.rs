@@ -22,8 +22,9 @@
 //!   operations the map's lanes ([`super::lanes`]) repeat bit for bit;
 //! - on the full model ([`TaylorHoop::full`], the scene's `taylor`) with the products of each
 //!   stage of an order side by side ([`CrossSums`]): the sine–cosine sums (4 lanes), `ω_x, ω_y`
-//!   (2), `D, W` (2), then `Ṙ`, `Π × ω`, the gravity terms and `ṗ_α`'s sums (16), each stage
-//!   one element-wise pass. The same sums, grouped `Σⱼ (aⱼ bₖ₋ⱼ − cⱼ dₖ₋ⱼ)` instead of
+//!   (2) and `D, W` (2) in one eight-lane pass over the lower orders, each stage then finishing
+//!   its own lanes; then `Ṙ`, `Π × ω`, the gravity terms and `ṗ_α`'s sums (16) in a second
+//!   pass. The same sums, grouped `Σⱼ (aⱼ bₖ₋ⱼ − cⱼ dₖ₋ⱼ)` instead of
 //!   `Σⱼ aⱼ bₖ₋ⱼ − Σⱼ cⱼ dₖ₋ⱼ`: the two forms agree to round-off, not bit for bit.
 
 use std::cell::RefCell;
